@@ -1,0 +1,68 @@
+// The background grid: a DMDA of (n+1)^DIM nodes over the scene's box, uniform cell size h.
+// Nodal fields live in one vector with NDOF values per node (see GridDof). Particle-to-grid sums go
+// into the local (ghosted) vector and are added across ranks; grid-to-particle reads ghosted
+// values.
+#pragma once
+#include "pmpm/config.hpp"
+#include <petscdmda.h>
+
+namespace pmpm {
+
+// Nodal layout. During P2G a node holds mass, momentum, total force and external force; after the
+// grid update the same slots hold mass, new velocity and acceleration (what G2P reads).
+struct GridDof {
+  static constexpr int M = 0;              // mass
+  static constexpr int P = 1;              // momentum -> velocity after the update
+  static constexpr int F = 1 + DIM;        // total force -> acceleration after the update
+  static constexpr int FEXT = 1 + 2 * DIM; // external force (for the unbalanced-force ratio)
+  static constexpr int NDOF = 1 + 3 * DIM;
+};
+
+// A plain view of the ghosted local nodal array, for kernels: node (i, j) in global indices is
+// at data[((j - gs[1]) * gm[0] + (i - gs[0])) * NDOF].
+struct GridView {
+  double h = 0;
+  double origin[DIM] = {0, 0};
+  PetscInt ncell[DIM] = {0, 0};
+  PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0}; // ghosted start and size, node indices
+  double *data = nullptr;
+  double *node(PetscInt i, PetscInt j) const {
+    return data + ((j - gs[1]) * gm[0] + (i - gs[0])) * GridDof::NDOF;
+  }
+};
+
+struct Grid {
+  DM da = nullptr;
+  double h = 0;
+  double origin[DIM] = {0, 0};
+  PetscInt ncell[DIM] = {0, 0};
+  PetscInt s[DIM] = {0, 0}, m[DIM] = {0, 0};             // owned nodes
+  PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0};           // ghosted nodes
+  PetscInt cell_lo[DIM] = {0, 0}, cell_hi[DIM] = {0, 0}; // owned cells [lo, hi)
+  Vec local = nullptr, global = nullptr;
+
+  // A particle centred in cell c is owned by the rank that owns node c + 1 (DMSwarm's rule).
+  bool owns_cell(const PetscInt c[DIM]) const {
+    for (int d = 0; d < DIM; ++d)
+      if (c[d] < cell_lo[d] || c[d] >= cell_hi[d]) return false;
+    return true;
+  }
+};
+
+// Create the DMDA: ncell cells of size h from origin; stencil width 2 (uGIMP support).
+// lx, ly may be null (PETSc's default split) or give the owned node counts per rank.
+PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[DIM],
+                          const PetscInt ncell[DIM], Grid &g);
+PetscErrorCode GridDestroy(Grid &g);
+// Zero the local vector and hand out a writable view of it (restore with GridRestoreLocal).
+PetscErrorCode GridGetLocal(Grid &g, bool zero, GridView &v);
+PetscErrorCode GridRestoreLocal(Grid &g, GridView &v);
+// A view of the owned nodes of the global vector (for the grid update).
+PetscErrorCode GridGetGlobal(Grid &g, GridView &v);
+PetscErrorCode GridRestoreGlobal(Grid &g, GridView &v);
+// Sum the ghosted local contributions into the global vector (ADD_VALUES).
+PetscErrorCode GridLocalToGlobalAdd(Grid &g);
+// Scatter owned values (and ghosts) back into the local vector.
+PetscErrorCode GridGlobalToLocal(Grid &g);
+
+} // namespace pmpm

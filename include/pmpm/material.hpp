@@ -1,0 +1,65 @@
+// The material interface: one batched stress update per material per step.
+//
+// A material receives, for each of its particles, the velocity gradient times dt (the
+// increment of the displacement gradient in the current configuration, a DIM x DIM matrix),
+// the updated deformation gradient F, and updates the particle's Cauchy stress (xx yy zz xy,
+// tension positive) and its internal state (equivalent plastic strain). Rate-form models use
+// the Jaumann rate for objectivity; hyperelastic models compute the stress from F directly.
+#pragma once
+#include "pmpm/config.hpp"
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pmpm {
+
+// Plain views over particle arrays; idx lists the particles this material owns.
+struct StressBatch {
+  int n = 0;                    // number of particles in idx
+  const int *idx = nullptr;     // particle indices
+  const double *dudx = nullptr; // DIM*DIM per particle: L*dt, row-major (dv_i/dx_j)
+  const double *F = nullptr;    // DIM*DIM per particle: deformation gradient after the step
+  double *stress = nullptr;     // NSTRESS per particle
+  double *eps_p = nullptr;      // 1 per particle: accumulated equivalent plastic strain
+};
+
+struct ElasticConstants {
+  double E = 0, nu = 0;
+  double G() const { return E / (2.0 * (1.0 + nu)); }
+  double K() const { return E / (3.0 * (1.0 - 2.0 * nu)); }
+  double lambda() const { return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)); }
+  // constrained (P-wave) modulus M = lambda + 2G
+  double M() const { return E * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu)); }
+};
+
+class Material {
+public:
+  virtual ~Material() = default;
+  virtual const char *model() const = 0;
+  // P-wave modulus that bounds the wave speed (for the stable time step and inertia scaling).
+  virtual double wave_modulus() const = 0;
+  // True when the model can yield: scenes report plastic state only for these.
+  virtual bool plastic() const { return false; }
+  virtual void update_stress(const StressBatch &b) const = 0;
+};
+
+// Small-strain increment and spin from L*dt (3x3, plane strain: zz rows/cols zero).
+inline void strain_and_spin(const double *dudx, Mat3 &de, Mat3 &dw) {
+  Mat3 g = Mat3::Zero();
+  for (int i = 0; i < DIM; ++i)
+    for (int j = 0; j < DIM; ++j) g(i, j) = dudx[i * DIM + j];
+  de = 0.5 * (g + g.transpose());
+  dw = 0.5 * (g - g.transpose());
+}
+
+// Jaumann rotation of a stress over the step: sigma + dw sigma - sigma dw.
+inline Mat3 jaumann_rotate(const Mat3 &s, const Mat3 &dw) {
+  return s + dw * s - s * dw;
+}
+
+// Isotropic linear elastic increment: lambda tr(de) I + 2 G de.
+inline Mat3 elastic_increment(const ElasticConstants &c, const Mat3 &de) {
+  return c.lambda() * de.trace() * Mat3::Identity() + 2.0 * c.G() * de;
+}
+
+} // namespace pmpm

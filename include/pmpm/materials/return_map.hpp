@@ -1,0 +1,36 @@
+// Shared pieces of the closed-form return maps (von Mises, Drucker-Prager).
+//
+// Conventions (REFERENCE.md section 4): Cauchy stress, tension positive, always the full 3x3
+// tensor (plane strain keeps sigma_zz, which evolves with plastic flow).
+//   p = tr(sigma)/3,  s = sigma - p I,  J2 = s:s/2.
+#pragma once
+#include "pmpm/config.hpp"
+#include <cmath>
+
+namespace pmpm {
+
+// Outcome of one return map. yielded: the trial state was outside the elastic domain and was
+// modified. apex: returned to the Drucker-Prager apex. tension: the tension cut-off p <= t was
+// active (alone or at its corner with the cone). dgamma: plastic multiplier of the yield
+// surface (cone / apex / von Mises), 0 on an elastic step.
+struct ReturnResult {
+  bool yielded = false;
+  bool apex = false;
+  bool tension = false;
+  double dgamma = 0;
+};
+
+namespace stress_inv {
+inline double mean(const Mat3 &sigma) {
+  return sigma.trace() / 3.0;
+}
+inline Mat3 deviator(const Mat3 &sigma) {
+  return sigma - mean(sigma) * Mat3::Identity();
+}
+// sqrt(J2) of a deviator s: sqrt(s:s/2).
+inline double sqrt_j2(const Mat3 &s) {
+  return std::sqrt(0.5 * s.squaredNorm());
+}
+} // namespace stress_inv
+
+} // namespace pmpm

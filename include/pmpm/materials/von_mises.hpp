@@ -1,0 +1,68 @@
+// Von Mises (J2) elastoplasticity with linear isotropic hardening, closed-form radial return.
+//
+// Simo & Hughes (1998), ch. 3 (radial return); de Souza Neto, Peric & Owen (2008), ch. 7.
+//   q = sqrt(3 J2),  Phi = q - sigma_y(eps_p),  sigma_y = sigma_y0 + H eps_p.
+// Associated flow d(eps^p) = dgamma (3/2) s/q, so the equivalent plastic strain
+// eps_p = int sqrt(2/3 d(eps^p):d(eps^p)) increases by exactly dgamma. With linear hardening
+// the consistency condition q_tr - 3G dgamma - sigma_y0 - H (eps_p + dgamma) = 0 is linear:
+//   dgamma = Phi_tr / (3G + H),  s = (1 - 3G dgamma / q_tr) s_tr,  p = p_tr.
+#pragma once
+#include "pmpm/material.hpp"
+#include "pmpm/materials/return_map.hpp"
+
+namespace pmpm {
+
+struct VonMisesParams {
+  ElasticConstants el;
+  double sigma_y0 = 0;  // initial uniaxial yield stress
+  double hardening = 0; // H = d(sigma_y)/d(eps_p); expected H > -3G
+};
+
+// sigma: in = trial stress (3x3 symmetric, tension positive), out = returned stress.
+// eps_p: equivalent plastic strain (accumulated, += dgamma). On an elastic step sigma and eps_p
+// are left untouched (bit for bit).
+inline ReturnResult von_mises_return(const VonMisesParams &prm, Mat3 &sigma, double &eps_p) {
+  ReturnResult r;
+  const double p_tr = stress_inv::mean(sigma);
+  const Mat3 s_tr = sigma - p_tr * Mat3::Identity();
+  const double q_tr = std::sqrt(3.0) * stress_inv::sqrt_j2(s_tr);
+  const double phi_tr = q_tr - (prm.sigma_y0 + prm.hardening * eps_p);
+  if (phi_tr <= 0.0) return r;
+  const double G = prm.el.G();
+  const double dgamma = phi_tr / (3.0 * G + prm.hardening);
+  // phi_tr > 0 implies q_tr > 0 whenever sigma_y >= 0, so the division is safe.
+  sigma = (1.0 - 3.0 * G * dgamma / q_tr) * s_tr + p_tr * Mat3::Identity();
+  eps_p += dgamma;
+  r.yielded = true;
+  r.dgamma = dgamma;
+  return r;
+}
+
+// Hypoelastic-plastic von Mises material: Jaumann-rotate the old stress, add the elastic
+// increment C:de (trial), then return (same as LinearElastic plus the return map).
+class VonMises final : public Material {
+public:
+  explicit VonMises(const VonMisesParams &prm) : prm_(prm) {}
+  const char *model() const override { return "von_mises"; }
+  double wave_modulus() const override { return prm_.el.M(); }
+  bool plastic() const override { return true; }
+  const VonMisesParams &params() const { return prm_; }
+  void update_stress(const StressBatch &b) const override {
+    for (int k = 0; k < b.n; ++k) {
+      const int p = b.idx[k];
+      Mat3 de, dw;
+      strain_and_spin(b.dudx + p * DIM * DIM, de, dw);
+      Mat3 s = jaumann_rotate(stress_to_tensor(b.stress + p * NSTRESS), dw) +
+               elastic_increment(prm_.el, de);
+      double ep = b.eps_p ? b.eps_p[p] : 0.0;
+      von_mises_return(prm_, s, ep);
+      if (b.eps_p) b.eps_p[p] = ep;
+      tensor_to_stress(s, b.stress + p * NSTRESS);
+    }
+  }
+
+private:
+  VonMisesParams prm_;
+};
+
+} // namespace pmpm

@@ -1,0 +1,24 @@
+// Output: summary.json, particles.h5 + particles.xmf (ParaView), an optional time series.
+// Files are written under temporary names and renamed when complete, so a failed run leaves no
+// half-written output.
+#pragma once
+#include "pmpm/simulation.hpp"
+#include <string>
+
+namespace pmpm {
+
+PetscErrorCode OutputPrepareDirectory(Simulation &sim);
+PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name);
+PetscErrorCode OutputSeriesFrame(Simulation &sim);
+PetscErrorCode OutputSeriesFinish(Simulation &sim);
+// Writes DIR/summary.json; results is the body of the "results" object ("k": v, ...).
+PetscErrorCode OutputSummary(Simulation &sim, const std::string &results);
+// Rename DIR/name.tmp to DIR/name on rank 0.
+PetscErrorCode OutputCommit(Simulation &sim, const std::string &name);
+
+// Small JSON helpers.
+std::string json_num(double v);
+std::string json_kv(const std::string &k, double v);
+std::string json_kv(const std::string &k, const std::string &raw);
+
+} // namespace pmpm

@@ -1,0 +1,113 @@
+// Everything one run holds: settings from the options database, the grid, the particles, the
+// materials, the loads and boundary conditions, and the state of the relaxation.
+#pragma once
+#include "pmpm/grid.hpp"
+#include "pmpm/material.hpp"
+#include "pmpm/particles.hpp"
+#include "pmpm/transfers.hpp"
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pmpm {
+
+enum class Damping { None = 0, Local = 1, Kinetic = 2, Both = 3 };
+inline constexpr const char *DampingNames[] = {"none",    "local",    "kinetic", "both",
+                                               "Damping", "DAMPING_", nullptr};
+enum class InertiaScaling { None = 0, WaveSpeed = 1 };
+inline constexpr const char *InertiaScalingNames[] = {"none", "wave_speed", "InertiaScaling",
+                                                      "INERTIA_", nullptr};
+
+// Options every scene accepts (the interface contract in README.md).
+struct Settings {
+  std::string scene;
+  double h = 0;     // -cell_size
+  PetscInt ppc = 2; // -ppc, particles per cell per direction
+  ShapeKind shape = ShapeKind::UGIMP;
+  double cfl = 0.5; // -cfl, 0 < F <= 1
+  PetscInt max_steps = 200000;
+  std::string output_dir;
+  bool quiet = false;
+  PetscInt output_every = 0;
+  double tol = 1e-6; // -tol, unbalanced-force ratio for convergence
+  Damping damping = Damping::Local;
+  double damping_alpha = 0.8;
+  PetscInt ramp_steps = 0;
+  double pic = 0.0;
+  InertiaScaling inertia = InertiaScaling::WaveSpeed;
+  double gdir[DIM] = {0.0, -1.0};
+  double progress_seconds = 2.0;
+  bool dynamic = false; // -dynamic: no damping, no convergence test (run max_steps)
+  bool musl = false;    // -musl: recompute nodal velocities from updated particle momenta
+};
+
+struct MaterialEntry {
+  std::string name;
+  std::unique_ptr<Material> model;
+  ElasticConstants el;
+  double gamma = 0;   // unit weight (N/m^3): the load
+  double density = 0; // inertial density (kg/m^3), possibly scaled
+};
+
+struct Simulation;
+
+// A scene: named geometry, materials, boundary conditions and results (pTatin-style table).
+class Scene {
+public:
+  virtual ~Scene() = default;
+  // Read the scene's options; set the box (origin, ncell), face BCs and material names.
+  virtual PetscErrorCode setup(Simulation &sim) = 0;
+  // The particles whose centres lie in this rank's cells.
+  virtual PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) = 0;
+  // Scene-specific results, as "key": value pairs appended to the summary's results object.
+  virtual PetscErrorCode results(Simulation &sim, std::string &json) = 0;
+  // Extra files (profiles); called after results, rank-collective.
+  virtual PetscErrorCode write_files(Simulation &) { return 0; }
+};
+
+std::unique_ptr<Scene> make_scene(const std::string &name);
+
+struct RunState {
+  PetscInt step = 0;
+  double time = 0;
+  double dt = 0;
+  double max_speed = 0;
+  double ratio = 1e300; // unbalanced-force ratio
+  double kinetic = 0;   // particle kinetic energy
+  double kinetic_prev = 0;
+  bool converged = false;
+  double wall_seconds = 0;
+  PetscInt migrations = 0;
+  PetscInt kinetic_resets = 0;
+};
+
+struct Simulation {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  PetscMPIInt rank = 0, size = 1;
+  Settings set;
+  std::unique_ptr<Scene> scene;
+
+  // set by the scene
+  double origin[DIM] = {0, 0};
+  PetscInt ncell[DIM] = {0, 0};
+  FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
+  std::vector<MaterialEntry> mats;
+
+  Grid grid;
+  Particles parts;
+  std::vector<double> wave_modulus;      // per material
+  std::vector<std::vector<int>> mat_idx; // particles of each material (this rank)
+  std::vector<PetscInt> traction_idx;    // particles carrying a traction
+  std::vector<double> dudx;              // L dt per particle (scratch)
+  RunState run;
+};
+
+// Setup: options, scene, materials, grid, particles.
+PetscErrorCode SimulationSetup(Simulation &sim);
+PetscErrorCode SimulationDestroy(Simulation &sim);
+// Rebuild the per-rank particle index lists (after a migration).
+PetscErrorCode SimulationIndexParticles(Simulation &sim);
+// Read a material's options (prefix -mat_<name>_) into an entry.
+PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, MaterialEntry &m);
+
+} // namespace pmpm

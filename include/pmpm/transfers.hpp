@@ -1,0 +1,83 @@
+// The transfer kernels of one explicit MPM step, as plain functions over plain views:
+//   p2g          mass, momentum, internal and external force to the nodes   (eq. 7, 8, 9 / 14)
+//   grid_update  nodal momentum balance with damping and boundary conditions (eq. 1, 2)
+//   g2p          particle velocity, position and velocity gradient          (eq. 4, 5, 20)
+// They touch no PETSc object; cycle.cpp calls them between the ghost exchanges.
+#pragma once
+#include "pmpm/grid.hpp"
+#include "pmpm/particles.hpp"
+#include "pmpm/shape.hpp"
+#include <vector>
+
+namespace pmpm {
+
+enum class FaceBC { Free = 0, Roller = 1, Fixed = 2 };
+inline constexpr const char *FaceBCNames[] = {"free", "roller", "fixed", "FaceBC", "BC_", nullptr};
+enum Face { XMIN = 0, XMAX = 1, YMIN = 2, YMAX = 3 };
+
+// Loads at the current step: the ramp factor multiplies gravity and tractions alike.
+struct Load {
+  double factor = 1.0;
+  double gdir[DIM] = {0.0, -1.0}; // unit direction of gravity
+};
+
+template <class Shape> void p2g(const ParticleView &P, const Load &load, const GridView &G);
+
+// Surface tractions act at the particle's face point x + tface; linear hats there give the
+// consistent nodal load of a traction on the body's face. idx lists the loaded particles.
+void p2g_traction(const ParticleView &P, const std::vector<PetscInt> &idx, double factor,
+                  const GridView &G);
+
+struct GridUpdateParams {
+  double dt = 0;
+  double damping_alpha = 0; // Cundall local non-viscous damping coefficient (0 = none)
+  FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
+};
+
+struct GridStats {
+  double max_unbalanced = 0; // max |f_int + f_ext| over free nodal dofs with mass
+  double sum_ext = 0;        // sum of |f_ext| over nodes with a load
+  double n_ext = 0;          // number of those nodes
+  double kinetic = 0;        // nodal kinetic energy 1/2 m v^2 after the update
+};
+
+// On the owned nodes of the global vector: v = p/m, a = (f - alpha |f| sign(v)) / m, v += dt a,
+// boundary conditions on both. Nodes without mass are skipped.
+void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &stats);
+
+struct G2PParams {
+  double dt = 0;
+  double pic = 0; // PIC fraction of the velocity update (0 = pure FLIP)
+};
+
+struct G2PStats {
+  double max_speed = 0;   // max over particles of c_p + |v_p| (for the next stable step)
+  double kinetic = 0;     // particle kinetic energy
+  PetscInt left_rank = 0; // particles now centred outside this rank's cells
+  PetscInt bad = 0;       // particles with J <= 0, a non-finite value, or off the grid
+  PetscInt bad_pid = -1;  // the first such particle
+  double bad_x[DIM] = {0, 0};
+  const char *bad_what = "";
+};
+
+// Which nodal dofs a box face holds: a roller holds the normal one, fixed holds both.
+void held_dofs(PetscInt i, PetscInt j, const PetscInt ncell[DIM], const FaceBC face[2 * DIM],
+               bool held[DIM]);
+
+// Particle velocity from the nodal acceleration (FLIP, eq. 4) blended with the nodal velocity.
+template <class Shape>
+void g2p_velocity(const ParticleView &P, const GridView &G, const G2PParams &prm);
+
+// MUSL: mass and momentum of the updated particle velocities back to the grid, and the nodal
+// velocity p/m with the boundary conditions (bounded even at nodes with tiny mass).
+template <class Shape> void p2g_momentum(const ParticleView &P, const GridView &G);
+void grid_velocity(const GridView &G, const FaceBC face[2 * DIM]);
+
+// Particle kinematics from the nodal velocity: position (eq. 5), L dt into dudx (eq. 20),
+// F <- (I + L dt) F, volume J V0; wave speeds and escape/instability checks into stats.
+template <class Shape>
+void g2p_kinematics(const ParticleView &P, const GridView &G, const Grid &grid,
+                    const G2PParams &prm, const double *wave_modulus, double *dudx,
+                    G2PStats &stats);
+
+} // namespace pmpm

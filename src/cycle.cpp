@@ -1,0 +1,208 @@
+// One step of the partition MPM cycle, top to bottom. Each phase is a plain kernel from
+// transfers.cpp or a material's batch update; PETSc appears only for the ghost exchanges and the
+// migration.
+#include "pmpm/cycle.hpp"
+#include <cmath>
+
+namespace pmpm {
+
+namespace {
+PetscLogEvent ev_p2g, ev_l2g, ev_grid, ev_g2l, ev_g2p, ev_musl, ev_stress, ev_migrate;
+
+template <class Shape>
+PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport &rep) {
+  Grid &g = sim.grid;
+  GridView G;
+  ParticleView P;
+  PetscFunctionBeginUser;
+  PetscCall(ParticlesGetView(sim.parts, P));
+
+  // 1. Particles to grid: mass, momentum, internal and external force (eq. 7-9, 14).
+  PetscCall(PetscLogEventBegin(ev_p2g, 0, 0, 0, 0));
+  PetscCall(GridGetLocal(g, true, G));
+  p2g<Shape>(P, load, G);
+  if (!sim.traction_idx.empty()) p2g_traction(P, sim.traction_idx, load.factor, G);
+  PetscCall(GridRestoreLocal(g, G));
+  PetscCall(PetscLogEventEnd(ev_p2g, 0, 0, 0, 0));
+
+  // 2. Sum the ghost contributions across ranks.
+  PetscCall(PetscLogEventBegin(ev_l2g, 0, 0, 0, 0));
+  PetscCall(GridLocalToGlobalAdd(g));
+  PetscCall(PetscLogEventEnd(ev_l2g, 0, 0, 0, 0));
+
+  // 3. Nodal momentum balance with damping and boundary conditions (eq. 1-2).
+  PetscCall(PetscLogEventBegin(ev_grid, 0, 0, 0, 0));
+  GridUpdateParams gp;
+  gp.dt = dt;
+  gp.damping_alpha = (sim.set.damping == Damping::Local || sim.set.damping == Damping::Both)
+                         ? sim.set.damping_alpha
+                         : 0.0;
+  for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.face[f];
+  PetscCall(GridGetGlobal(g, G));
+  grid_update(G, gp, rep.grid);
+  PetscCall(GridRestoreGlobal(g, G));
+  PetscCall(PetscLogEventEnd(ev_grid, 0, 0, 0, 0));
+
+  // 4. New nodal velocities and accelerations to the ghosts.
+  PetscCall(PetscLogEventBegin(ev_g2l, 0, 0, 0, 0));
+  PetscCall(GridGlobalToLocal(g));
+  PetscCall(PetscLogEventEnd(ev_g2l, 0, 0, 0, 0));
+
+  // 5. Grid to particles: velocity (eq. 4). Under MUSL the updated particle momenta are mapped
+  //    back to the grid and the nodal velocity is recomputed before the kinematics.
+  PetscCall(PetscLogEventBegin(ev_g2p, 0, 0, 0, 0));
+  G2PParams pp;
+  pp.dt = dt;
+  pp.pic = sim.set.pic;
+  PetscCall(GridGetLocal(g, false, G));
+  g2p_velocity<Shape>(P, G, pp);
+  PetscCall(GridRestoreLocal(g, G));
+  PetscCall(PetscLogEventEnd(ev_g2p, 0, 0, 0, 0));
+  if (sim.set.musl) {
+    PetscCall(PetscLogEventBegin(ev_musl, 0, 0, 0, 0));
+    PetscCall(GridGetLocal(g, true, G));
+    p2g_momentum<Shape>(P, G);
+    PetscCall(GridRestoreLocal(g, G));
+    PetscCall(GridLocalToGlobalAdd(g));
+    PetscCall(GridGetGlobal(g, G));
+    grid_velocity(G, sim.face);
+    PetscCall(GridRestoreGlobal(g, G));
+    PetscCall(GridGlobalToLocal(g));
+    PetscCall(PetscLogEventEnd(ev_musl, 0, 0, 0, 0));
+  }
+
+  // 6. Particle kinematics: position, velocity gradient, F, volume (eq. 5, 20).
+  PetscCall(PetscLogEventBegin(ev_g2p, 0, 0, 0, 0));
+  PetscCall(GridGetLocal(g, false, G));
+  g2p_kinematics<Shape>(P, G, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);
+  PetscCall(GridRestoreLocal(g, G));
+  PetscCall(PetscLogEventEnd(ev_g2p, 0, 0, 0, 0));
+
+  // 7. Stress update, one batch per material (eq. 6).
+  PetscCall(PetscLogEventBegin(ev_stress, 0, 0, 0, 0));
+  for (size_t m = 0; m < sim.mats.size(); ++m) {
+    StressBatch b;
+    b.n = static_cast<int>(sim.mat_idx[m].size());
+    if (b.n == 0) continue;
+    b.idx = sim.mat_idx[m].data();
+    b.dudx = sim.dudx.data();
+    b.F = P.F;
+    b.stress = P.stress;
+    b.eps_p = P.eps_p;
+    sim.mats[m].model->update_stress(b);
+  }
+  PetscCall(PetscLogEventEnd(ev_stress, 0, 0, 0, 0));
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode LogRegister() {
+  PetscClassId cls;
+  PetscFunctionBeginUser;
+  PetscCall(PetscClassIdRegister("pmpm", &cls));
+  PetscCall(PetscLogEventRegister("P2G", cls, &ev_p2g));
+  PetscCall(PetscLogEventRegister("GhostAdd", cls, &ev_l2g));
+  PetscCall(PetscLogEventRegister("GridUpdate", cls, &ev_grid));
+  PetscCall(PetscLogEventRegister("GhostScatter", cls, &ev_g2l));
+  PetscCall(PetscLogEventRegister("G2P", cls, &ev_g2p));
+  PetscCall(PetscLogEventRegister("MUSLRemap", cls, &ev_musl));
+  PetscCall(PetscLogEventRegister("StressUpdate", cls, &ev_stress));
+  PetscCall(PetscLogEventRegister("Migrate", cls, &ev_migrate));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &rep) {
+  PetscFunctionBeginUser;
+  rep = StepReport{};
+  switch (sim.set.shape) {
+  case ShapeKind::Linear:
+    PetscCall(StepWith<LinearShape>(sim, load, dt, rep));
+    break;
+  case ShapeKind::UGIMP:
+    PetscCall(StepWith<UGIMPShape>(sim, load, dt, rep));
+    break;
+  }
+
+  // 8. Reductions: unbalanced force, loads, energy, wave speed, escapes (two allreduces).
+  double mx[3] = {rep.grid.max_unbalanced, rep.g2p.max_speed,
+                  static_cast<double>(rep.g2p.bad > 0 ? sim.rank + 1 : 0)};
+  double sm[4] = {rep.grid.sum_ext, rep.grid.n_ext, rep.g2p.kinetic,
+                  static_cast<double>(rep.g2p.left_rank)};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPI_DOUBLE, MPI_MAX, sim.comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, 4, MPI_DOUBLE, MPI_SUM, sim.comm));
+  rep.grid.max_unbalanced = mx[0];
+  rep.g2p.max_speed = mx[1];
+  rep.grid.sum_ext = sm[0];
+  rep.grid.n_ext = sm[1];
+  rep.g2p.kinetic = sm[2];
+
+  // A particle off the grid, with J <= 0, or non-finite: stop with where, when and what to do.
+  if (mx[2] > 0) {
+    const int who = static_cast<int>(mx[2]) - 1;
+    double info[3] = {static_cast<double>(rep.g2p.bad_pid), rep.g2p.bad_x[0], rep.g2p.bad_x[1]};
+    PetscCallMPI(MPI_Bcast(info, 3, MPI_DOUBLE, who, sim.comm));
+    char what[96] = "";
+    if (sim.rank == who) PetscCall(PetscStrncpy(what, rep.g2p.bad_what, sizeof(what)));
+    PetscCallMPI(MPI_Bcast(what, sizeof(what), MPI_CHAR, who, sim.comm));
+    SETERRQ(sim.comm, PETSC_ERR_NOT_CONVERGED,
+            "Instability at step %" PetscInt_FMT ": %s (particle %.0f at x = (%g, %g) m). "
+            "Reduce -cfl (now %g), raise -damping_alpha, or enlarge the grid if the body moves "
+            "off it.",
+            sim.run.step, what, info[0], info[1], info[2], sim.set.cfl);
+  }
+
+  // 9. Migrate only when a particle left its rank's cells.
+  if (sm[3] > 0) {
+    PetscCall(PetscLogEventBegin(ev_migrate, 0, 0, 0, 0));
+    PetscCall(ParticlesMigrate(sim.parts));
+    PetscCall(SimulationIndexParticles(sim));
+    ++sim.run.migrations;
+    PetscCall(PetscLogEventEnd(ev_migrate, 0, 0, 0, 0));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio) {
+  Grid &g = sim.grid;
+  GridView G;
+  ParticleView P;
+  Load load;
+  GridStats st;
+  GridUpdateParams gp; // dt = 0, no damping: only the force sums are wanted
+  PetscFunctionBeginUser;
+  for (int d = 0; d < DIM; ++d) load.gdir[d] = sim.set.gdir[d];
+  for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.face[f];
+  PetscCall(ParticlesGetView(sim.parts, P));
+  PetscCall(GridGetLocal(g, true, G));
+  if (shape == ShapeKind::Linear)
+    p2g<LinearShape>(P, load, G);
+  else
+    p2g<UGIMPShape>(P, load, G);
+  if (!sim.traction_idx.empty()) p2g_traction(P, sim.traction_idx, load.factor, G);
+  PetscCall(GridRestoreLocal(g, G));
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  PetscCall(GridLocalToGlobalAdd(g));
+  PetscCall(GridGetGlobal(g, G));
+  grid_update(G, gp, st);
+  PetscCall(GridRestoreGlobal(g, G));
+  double mx = st.max_unbalanced, sm[2] = {st.sum_ext, st.n_ext};
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mx, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, 2, MPI_DOUBLE, MPI_SUM, sim.comm));
+  *ratio = mx / (sm[0] / sm[1]);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode InitialWaveSpeed(Simulation &sim, double *max_speed) {
+  ParticleView P;
+  double c = 0;
+  PetscFunctionBeginUser;
+  PetscCall(ParticlesGetView(sim.parts, P));
+  for (PetscInt p = 0; p < P.n; ++p)
+    c = std::fmax(c, std::sqrt(sim.wave_modulus[P.mat[p]] * P.vol[p] / P.mass[p]));
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  PetscCallMPI(MPI_Allreduce(&c, max_speed, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
+  PetscFunctionReturn(0);
+}
+
+} // namespace pmpm

@@ -1,0 +1,109 @@
+#include "pmpm/grid.hpp"
+
+namespace pmpm {
+
+PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[DIM],
+                          const PetscInt ncell[DIM], Grid &g) {
+  PetscFunctionBeginUser;
+  g.h = h;
+  for (int d = 0; d < DIM; ++d) {
+    g.origin[d] = origin[d];
+    g.ncell[d] = ncell[d];
+  }
+  // GHOSTED boundaries give every rank two ghost layers outside the box too, so a particle at the
+  // box face can write its (zero-weight) outer stencil nodes without a bounds test.
+  PetscCall(DMDACreate2d(comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX,
+                         ncell[0] + 1, ncell[1] + 1, PETSC_DECIDE, PETSC_DECIDE, GridDof::NDOF, 2,
+                         nullptr, nullptr, &g.da));
+  PetscCall(DMSetFromOptions(g.da));
+  PetscCall(DMSetUp(g.da));
+  PetscCall(DMDASetUniformCoordinates(g.da, origin[0], origin[0] + ncell[0] * h, origin[1],
+                                      origin[1] + ncell[1] * h, 0.0, 0.0));
+  PetscCall(DMDASetFieldName(g.da, GridDof::M, "mass"));
+  PetscCall(DMDAGetCorners(g.da, &g.s[0], &g.s[1], nullptr, &g.m[0], &g.m[1], nullptr));
+  PetscCall(DMDAGetGhostCorners(g.da, &g.gs[0], &g.gs[1], nullptr, &g.gm[0], &g.gm[1], nullptr));
+  for (int d = 0; d < DIM; ++d) {
+    g.cell_lo[d] = g.s[d] == 0 ? 0 : g.s[d] - 1;
+    g.cell_hi[d] = g.s[d] + g.m[d] == ncell[d] + 1 ? ncell[d] : g.s[d] + g.m[d] - 1;
+  }
+  PetscCall(DMCreateLocalVector(g.da, &g.local));
+  PetscCall(DMCreateGlobalVector(g.da, &g.global));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GridDestroy(Grid &g) {
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&g.local));
+  PetscCall(VecDestroy(&g.global));
+  PetscCall(DMDestroy(&g.da));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GridGetLocal(Grid &g, bool zero, GridView &v) {
+  PetscFunctionBeginUser;
+  if (zero) PetscCall(VecZeroEntries(g.local));
+  v.h = g.h;
+  for (int d = 0; d < DIM; ++d) {
+    v.origin[d] = g.origin[d];
+    v.ncell[d] = g.ncell[d];
+    v.gs[d] = g.gs[d];
+    v.gm[d] = g.gm[d];
+  }
+  PetscCall(VecGetArray(g.local, &v.data));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GridRestoreLocal(Grid &g, GridView &v) {
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArray(g.local, &v.data));
+  v.data = nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GridGetGlobal(Grid &g, GridView &v) {
+  PetscFunctionBeginUser;
+  v.h = g.h;
+  for (int d = 0; d < DIM; ++d) {
+    v.origin[d] = g.origin[d];
+    v.ncell[d] = g.ncell[d];
+    v.gs[d] = g.s[d];
+    v.gm[d] = g.m[d];
+  }
+  PetscCall(VecGetArray(g.global, &v.data));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GridRestoreGlobal(Grid &g, GridView &v) {
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArray(g.global, &v.data));
+  v.data = nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GridLocalToGlobalAdd(Grid &g) {
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(g.global));
+  PetscCall(DMLocalToGlobalBegin(g.da, g.local, ADD_VALUES, g.global));
+  PetscCall(DMLocalToGlobalEnd(g.da, g.local, ADD_VALUES, g.global));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GridGlobalToLocal(Grid &g) {
+  PetscFunctionBeginUser;
+  PetscCall(DMGlobalToLocalBegin(g.da, g.global, INSERT_VALUES, g.local));
+  PetscCall(DMGlobalToLocalEnd(g.da, g.global, INSERT_VALUES, g.local));
+  // Ghost nodes outside the box are not part of the solve: the scatter leaves them holding this
+  // rank's P2G sums, so zero them (a support reaching past the box sees v = a = 0 there).
+  double *a;
+  PetscCall(VecGetArray(g.local, &a));
+  for (PetscInt j = g.gs[1]; j < g.gs[1] + g.gm[1]; ++j)
+    for (PetscInt i = g.gs[0]; i < g.gs[0] + g.gm[0]; ++i) {
+      if (i >= 0 && i <= g.ncell[0] && j >= 0 && j <= g.ncell[1]) continue;
+      double *node = a + ((j - g.gs[1]) * g.gm[0] + (i - g.gs[0])) * GridDof::NDOF;
+      for (int k = 0; k < GridDof::NDOF; ++k) node[k] = 0.0;
+    }
+  PetscCall(VecRestoreArray(g.local, &a));
+  PetscFunctionReturn(0);
+}
+
+} // namespace pmpm

@@ -1,0 +1,115 @@
+#include "pmpm/particles.hpp"
+#include <cstring>
+
+namespace pmpm {
+
+namespace {
+struct FieldSpec {
+  const char *name;
+  int bs;
+  PetscDataType type;
+};
+// Every field but the coordinates (registered by DMSwarm itself for the PIC type).
+constexpr FieldSpec kFields[] = {
+    {"x0", DIM, PETSC_REAL},         {"v", DIM, PETSC_REAL},        {"lp", DIM, PETSC_REAL},
+    {"mass", 1, PETSC_REAL},         {"vol", 1, PETSC_REAL},        {"vol0", 1, PETSC_REAL},
+    {"weight", 1, PETSC_REAL},       {"traction", DIM, PETSC_REAL}, {"tface", DIM, PETSC_REAL},
+    {"stress", NSTRESS, PETSC_REAL}, {"F", DIM *DIM, PETSC_REAL},   {"eps_p", 1, PETSC_REAL},
+    {"colour", 1, PETSC_REAL},       {"mat", 1, PETSC_INT},         {"pid", 1, PETSC_INT},
+};
+constexpr PetscInt kBuffer = 1000; // DMSwarm reallocation slack (see PETSC_NOTES.md)
+} // namespace
+
+PetscErrorCode ParticlesCreate(Grid &g, Particles &P) {
+  PetscFunctionBeginUser;
+  PetscCall(DMCreate(PetscObjectComm((PetscObject)g.da), &P.sw));
+  PetscCall(PetscObjectSetName((PetscObject)P.sw, "particles"));
+  PetscCall(DMSetType(P.sw, DMSWARM));
+  PetscCall(DMSetDimension(P.sw, DIM));
+  PetscCall(DMSwarmSetType(P.sw, DMSWARM_PIC));
+  PetscCall(DMSwarmSetCellDM(P.sw, g.da));
+  PetscCall(DMSwarmInitializeFieldRegister(P.sw));
+  for (const auto &f : kFields)
+    PetscCall(DMSwarmRegisterPetscDatatypeField(P.sw, f.name, f.bs, f.type));
+  PetscCall(DMSwarmFinalizeFieldRegister(P.sw));
+  PetscCall(DMSwarmSetLocalSizes(P.sw, 0, kBuffer));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParticlesDestroy(Particles &P) {
+  PetscFunctionBeginUser;
+  PetscCall(DMDestroy(&P.sw));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParticlesGetView(Particles &P, ParticleView &v) {
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(P.sw, &v.n));
+  PetscCall(DMSwarmGetField(P.sw, DMSwarmPICField_coor, nullptr, nullptr, (void **)&v.x));
+  double **reals[] = {&v.x0,       &v.v,     &v.lp,     &v.mass, &v.vol,   &v.vol0,  &v.weight,
+                      &v.traction, &v.tface, &v.stress, &v.F,    &v.eps_p, &v.colour};
+  for (int k = 0; k < 13; ++k)
+    PetscCall(DMSwarmGetField(P.sw, kFields[k].name, nullptr, nullptr, (void **)reals[k]));
+  PetscCall(DMSwarmGetField(P.sw, "mat", nullptr, nullptr, (void **)&v.mat));
+  PetscCall(DMSwarmGetField(P.sw, "pid", nullptr, nullptr, (void **)&v.pid));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParticlesRestoreView(Particles &P, ParticleView &v) {
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmRestoreField(P.sw, DMSwarmPICField_coor, nullptr, nullptr, (void **)&v.x));
+  double **reals[] = {&v.x0,       &v.v,     &v.lp,     &v.mass, &v.vol,   &v.vol0,  &v.weight,
+                      &v.traction, &v.tface, &v.stress, &v.F,    &v.eps_p, &v.colour};
+  for (int k = 0; k < 13; ++k)
+    PetscCall(DMSwarmRestoreField(P.sw, kFields[k].name, nullptr, nullptr, (void **)reals[k]));
+  PetscCall(DMSwarmRestoreField(P.sw, "mat", nullptr, nullptr, (void **)&v.mat));
+  PetscCall(DMSwarmRestoreField(P.sw, "pid", nullptr, nullptr, (void **)&v.pid));
+  v = ParticleView{};
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParticlesAdd(Particles &P, const std::vector<ParticleInit> &init) {
+  PetscFunctionBeginUser;
+  const PetscInt n = static_cast<PetscInt>(init.size());
+  PetscCall(DMSwarmSetLocalSizes(P.sw, n, kBuffer));
+  ParticleView v;
+  PetscCall(ParticlesGetView(P, v));
+  for (PetscInt p = 0; p < n; ++p) {
+    const ParticleInit &q = init[p];
+    double vol = q.vol;
+    for (int d = 0; d < DIM; ++d) {
+      v.x[p * DIM + d] = q.x[d];
+      v.x0[p * DIM + d] = q.x[d];
+      v.v[p * DIM + d] = 0.0;
+      v.lp[p * DIM + d] = q.lp[d];
+      v.traction[p * DIM + d] = q.traction[d];
+      v.tface[p * DIM + d] = q.tface[d];
+      for (int e = 0; e < DIM; ++e) v.F[(p * DIM + d) * DIM + e] = d == e ? 1.0 : 0.0;
+    }
+    v.mass[p] = q.density * vol;
+    v.vol[p] = vol;
+    v.vol0[p] = vol;
+    v.weight[p] = q.gamma * vol;
+    for (int s = 0; s < NSTRESS; ++s) v.stress[p * NSTRESS + s] = 0.0;
+    v.eps_p[p] = 0.0;
+    v.colour[p] = q.colour;
+    v.mat[p] = q.mat;
+    v.pid[p] = q.pid;
+  }
+  PetscCall(ParticlesRestoreView(P, v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParticlesMigrate(Particles &P) {
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmMigrate(P.sw, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ParticlesGlobalCount(Particles &P, PetscInt *n) {
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetSize(P.sw, n));
+  PetscFunctionReturn(0);
+}
+
+} // namespace pmpm

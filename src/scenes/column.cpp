@@ -1,0 +1,114 @@
+// A column under self-weight (REFERENCE.md 2.2): height H, base fixed, sides on rollers, top free.
+// Uniaxial strain, so the Cauchy stress at initial height Y is exactly -gamma (H - Y) at any
+// deformation (the weight above is conserved). Each model's law then gives J(Y), and
+// y(Y) = int_0^Y J dY:
+//   linear elastic (Jaumann rate): sigma_yy = M ln J          -> J = exp(sigma / M)
+//   neo-Hookean:   sigma_yy = (lambda ln J + mu (J^2 - 1)) / J (solved by Newton)
+// For small strain both reduce to u_y = -(gamma / M)(H Y - Y^2 / 2).
+#include "pmpm/materials/elastic.hpp"
+#include "pmpm/output.hpp"
+#include "pmpm/scene_util.hpp"
+#include <cmath>
+#include <cstring>
+
+namespace pmpm {
+
+class ColumnScene final : public Scene {
+  double H_ = 1.0, W_ = 0;
+
+  double J_of_stress(const MaterialEntry &m, double sig) const {
+    const ElasticConstants &c = m.el;
+    if (std::strcmp(m.model->model(), "neo_hookean") != 0) return std::exp(sig / c.M());
+    double J = std::exp(sig / c.M());
+    for (int it = 0; it < 60; ++it) { // Newton on g(J) = lambda ln J + mu (J^2 - 1) - sig J
+      const double g = c.lambda() * std::log(J) + c.G() * (J * J - 1) - sig * J;
+      const double dg = c.lambda() / J + 2 * c.G() * J - sig;
+      const double step = g / dg;
+      J -= step;
+      if (std::fabs(step) < 1e-15 * J) break;
+    }
+    return J;
+  }
+  // Exact vertical displacement at initial height Y (Simpson on 2000 intervals).
+  double u_exact(const MaterialEntry &m, double Y) const {
+    const int n = 2000;
+    const double dY = Y / n;
+    double s = 0;
+    for (int k = 0; k <= n; ++k) {
+      const double w = (k == 0 || k == n) ? 1 : (k % 2 ? 4 : 2);
+      s += w * J_of_stress(m, -m.gamma * (H_ - k * dY));
+    }
+    return s * dY / 3.0 - Y;
+  }
+
+public:
+  PetscErrorCode setup(Simulation &sim) override {
+    PetscFunctionBeginUser;
+    PetscOptionsBegin(sim.comm, "column_", "Column under self-weight", nullptr);
+    PetscCall(PetscOptionsReal("-height", "Column height H (m)", nullptr, H_, &H_, nullptr));
+    PetscCall(
+        PetscOptionsReal("-width", "Column width (m); default 4 cells", nullptr, W_, &W_, nullptr));
+    PetscOptionsEnd();
+    if (W_ <= 0) W_ = 4 * sim.set.h;
+    PetscInt nH, nW;
+    PetscCall(CheckCells(sim.comm, "-column_height", H_, sim.set.h, &nH));
+    PetscCall(CheckCells(sim.comm, "-column_width", W_, sim.set.h, &nW));
+    sim.origin[0] = sim.origin[1] = 0;
+    sim.ncell[0] = nW;
+    sim.ncell[1] = nH + 2;
+    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
+    sim.face[YMIN] = FaceBC::Fixed;
+    sim.mats.resize(1);
+    PetscCall(MaterialFromOptions(sim.comm, "column", sim.mats[0]));
+    PetscCheck(sim.mats[0].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-mat_column_gamma must be > 0 for a column under self-weight");
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+    PetscFunctionBeginUser;
+    const double H = H_, W = W_;
+    FillRegular(
+        sim, [H, W](const double x[DIM]) { return x[0] < W && x[1] < H ? 0 : -1; }, out);
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode results(Simulation &sim, std::string &json) override {
+    ParticleView P;
+    PetscFunctionBeginUser;
+    const MaterialEntry &m = sim.mats[0];
+    // sums: top u, top u_exact, top count, stress err^2 V, stress^2 V, disp err^2 V, disp^2 V
+    double s[7] = {0, 0, 0, 0, 0, 0, 0};
+    PetscCall(ParticlesGetView(sim.parts, P));
+    for (PetscInt p = 0; p < P.n; ++p) {
+      const double Y = P.x0[p * DIM + 1], V0 = P.vol0[p];
+      const double u = P.x[p * DIM + 1] - Y, ue = u_exact(m, Y);
+      const double se = -m.gamma * (H_ - Y), sy = P.stress[p * NSTRESS + 1];
+      if (Y + P.lp[p * DIM + 1] > H_ - 1e-9 * H_) {
+        s[0] += -u;
+        s[1] += -ue;
+        s[2] += 1;
+      }
+      s[3] += (sy - se) * (sy - se) * V0;
+      s[4] += se * se * V0;
+      s[5] += (u - ue) * (u - ue) * V0;
+      s[6] += ue * ue * V0;
+    }
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    PetscCall(SumAll(sim.comm, s, 7));
+    const double small = m.gamma * H_ * H_ / (2 * m.el.M());
+    json = json_kv("top_settlement", s[0] / s[2]) + ",\n    " +
+           json_kv("top_settlement_exact", s[1] / s[2]) + ",\n    " +
+           json_kv("top_surface_settlement_small_strain", small) + ",\n    " +
+           json_kv("stress_l2_error_rel", std::sqrt(s[3] / s[4])) + ",\n    " +
+           json_kv("displacement_l2_error_rel", std::sqrt(s[5] / s[6])) + ",\n    " +
+           "\"model\": \"" + m.model->model() + "\"";
+    PetscFunctionReturn(0);
+  }
+};
+
+std::unique_ptr<Scene> make_column_scene() {
+  return std::make_unique<ColumnScene>();
+}
+
+} // namespace pmpm

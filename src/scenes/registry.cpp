@@ -1,0 +1,15 @@
+// The scene table: one line per scene.
+#include "pmpm/simulation.hpp"
+
+namespace pmpm {
+
+std::unique_ptr<Scene> make_bar_scene();
+std::unique_ptr<Scene> make_column_scene();
+
+std::unique_ptr<Scene> make_scene(const std::string &name) {
+  if (name == "bar") return make_bar_scene();
+  if (name == "column") return make_column_scene();
+  return nullptr;
+}
+
+} // namespace pmpm

@@ -1,0 +1,51 @@
+#include "pmpm/scene_util.hpp"
+#include <cmath>
+#include <memory>
+
+namespace pmpm {
+
+void FillRegular(const Simulation &sim, const MaterialAt &at, std::vector<ParticleInit> &out) {
+  const double h = sim.set.h;
+  const PetscInt ppc = sim.set.ppc;
+  const double dx = h / ppc;
+  const Grid &g = sim.grid;
+  for (PetscInt j = g.cell_lo[1]; j < g.cell_hi[1]; ++j)
+    for (PetscInt i = g.cell_lo[0]; i < g.cell_hi[0]; ++i)
+      for (PetscInt b = 0; b < ppc; ++b)
+        for (PetscInt a = 0; a < ppc; ++a) {
+          ParticleInit q{};
+          q.x[0] = sim.origin[0] + i * h + (a + 0.5) * dx;
+          q.x[1] = sim.origin[1] + j * h + (b + 0.5) * dx;
+          const int m = at(q.x);
+          if (m < 0) continue;
+          q.lp[0] = q.lp[1] = 0.5 * dx;
+          q.vol = dx * dx;
+          q.mat = m;
+          q.density = sim.mats[m].density;
+          q.gamma = sim.mats[m].gamma;
+          q.pid = ((j * sim.ncell[0] + i) * ppc + b) * ppc + a;
+          out.push_back(q);
+        }
+}
+
+PetscErrorCode CheckCells(MPI_Comm comm, const char *option, double length, double h,
+                          PetscInt *cells) {
+  PetscFunctionBeginUser;
+  const double r = length / h;
+  PetscCheck(length > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be > 0 (got %g)", option, length);
+  PetscCheck(std::fabs(r - std::round(r)) < 1e-6 * std::fmax(1.0, r) && std::round(r) >= 1, comm,
+             PETSC_ERR_ARG_OUTOFRANGE,
+             "%s = %g m is not a whole number (>= 1) of cells of -cell_size %g m: the grid is too "
+             "coarse for the body or misaligned with it",
+             option, length, h);
+  *cells = static_cast<PetscInt>(std::round(r));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SumAll(MPI_Comm comm, double *v, int n) {
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_SUM, comm));
+  PetscFunctionReturn(0);
+}
+
+} // namespace pmpm

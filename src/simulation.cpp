@@ -1,0 +1,267 @@
+// Setup of a run: the common options, the scene, the materials, the grid and the particles.
+#include "pmpm/simulation.hpp"
+#include "pmpm/materials/drucker_prager.hpp"
+#include "pmpm/materials/elastic.hpp"
+#include "pmpm/materials/von_mises.hpp"
+#include <limits>
+#include <cmath>
+#include <cstring>
+
+namespace pmpm {
+
+namespace {
+
+PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
+  char scene[64] = "", dir[PETSC_MAX_PATH_LEN] = "";
+  PetscBool set = PETSC_FALSE;
+  PetscInt ng = DIM;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
+  PetscCall(PetscOptionsString("-scene", "Scene: bar, column, landfill", nullptr, scene, scene,
+                               sizeof(scene), &set));
+  PetscCheck(set, comm, PETSC_ERR_USER_INPUT,
+             "No scene given: pass -options_file options/<scene>.opts or -scene NAME "
+             "(bar, column, landfill)");
+  s.scene = scene;
+  PetscCall(PetscOptionsReal("-cell_size", "Cell size h (m), > 0", nullptr, s.h, &s.h, nullptr));
+  PetscCall(PetscOptionsInt("-ppc", "Particles per cell per direction, 1..8", nullptr, s.ppc,
+                            &s.ppc, nullptr));
+  PetscCall(PetscOptionsEnum("-shape", "Shape functions: mpm (linear) or pmpm (uGIMP)", nullptr,
+                             ShapeKindNames, (PetscEnum)s.shape, (PetscEnum *)&s.shape, nullptr));
+  PetscCall(PetscOptionsReal("-cfl", "Time-step factor on h / max(c + |v|), 0 < F <= 1", nullptr,
+                             s.cfl, &s.cfl, nullptr));
+  PetscCall(
+      PetscOptionsInt("-max_steps", "Step cap, >= 1", nullptr, s.max_steps, &s.max_steps, nullptr));
+  PetscCall(PetscOptionsString("-output_dir", "Output directory (default output/<scene>)", nullptr,
+                               dir, dir, sizeof(dir), &set));
+  s.output_dir = set ? std::string(dir) : "output/" + s.scene;
+  PetscBool quiet = s.quiet ? PETSC_TRUE : PETSC_FALSE,
+            dynamic = s.dynamic ? PETSC_TRUE : PETSC_FALSE,
+            musl = s.musl ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscOptionsBool("-quiet", "No progress lines", nullptr, quiet, &quiet, nullptr));
+  s.quiet = quiet;
+  PetscCall(PetscOptionsInt("-output_every",
+                            "Also write a particle time series every K steps (0: "
+                            "final state only)",
+                            nullptr, s.output_every, &s.output_every, nullptr));
+  PetscCall(PetscOptionsReal("-tol", "Convergence: unbalanced-force ratio max|f|/mean|f_ext|, > 0",
+                             nullptr, s.tol, &s.tol, nullptr));
+  PetscCall(PetscOptionsEnum("-damping", "Dynamic-relaxation damping", nullptr, DampingNames,
+                             (PetscEnum)s.damping, (PetscEnum *)&s.damping, nullptr));
+  PetscCall(PetscOptionsReal("-damping_alpha", "Local (Cundall) damping coefficient, 0 <= a < 1",
+                             nullptr, s.damping_alpha, &s.damping_alpha, nullptr));
+  PetscCall(PetscOptionsInt("-ramp_steps", "Load ramp length in steps (0: full load at once)",
+                            nullptr, s.ramp_steps, &s.ramp_steps, nullptr));
+  PetscCall(PetscOptionsReal("-pic", "PIC fraction of the particle velocity update, 0..1", nullptr,
+                             s.pic, &s.pic, nullptr));
+  PetscCall(PetscOptionsEnum("-inertia_scaling",
+                             "Inertial density per material: none (given densities) or "
+                             "wave_speed (equal wave speed in every material; loads unchanged)",
+                             nullptr, InertiaScalingNames, (PetscEnum)s.inertia,
+                             (PetscEnum *)&s.inertia, nullptr));
+  PetscCall(PetscOptionsRealArray("-gravity_dir", "Gravity direction (normalised), gx,gy", nullptr,
+                                  s.gdir, &ng, &set));
+  PetscCheck(!set || ng == DIM, comm, PETSC_ERR_USER_INPUT,
+             "-gravity_dir needs %d components, got %" PetscInt_FMT, DIM, ng);
+  PetscCall(PetscOptionsReal("-progress_interval", "Seconds between progress lines", nullptr,
+                             s.progress_seconds, &s.progress_seconds, nullptr));
+  PetscCall(PetscOptionsBool("-dynamic", "Undamped dynamics: no damping, run to -max_steps",
+                             nullptr, dynamic, &dynamic, nullptr));
+  s.dynamic = dynamic;
+  PetscCall(PetscOptionsBool("-musl",
+                             "Modified update (MUSL): nodal velocities for the kinematics "
+                             "are re-mapped from the updated particle momenta (false: USL)",
+                             nullptr, musl, &musl, nullptr));
+  s.musl = musl;
+  PetscOptionsEnd();
+
+  PetscCheck(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
+  PetscCheck(s.ppc >= 1 && s.ppc <= 8, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-ppc must be in 1..8 (got %" PetscInt_FMT ")", s.ppc);
+  PetscCheck(s.cfl > 0 && s.cfl <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-cfl must be in (0, 1] (got %g): above 1 the explicit step is unstable", s.cfl);
+  PetscCheck(s.max_steps >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-max_steps must be >= 1");
+  PetscCheck(s.tol > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-tol must be > 0 (got %g)", s.tol);
+  PetscCheck(s.damping_alpha >= 0 && s.damping_alpha < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-damping_alpha must be in [0, 1) (got %g)", s.damping_alpha);
+  PetscCheck(s.ramp_steps >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ramp_steps must be >= 0");
+  PetscCheck(s.pic >= 0 && s.pic <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-pic must be in [0, 1] (got %g)", s.pic);
+  PetscCheck(s.output_every >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_every must be >= 0");
+  const double gn = std::hypot(s.gdir[0], s.gdir[1]);
+  PetscCheck(gn > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity_dir must be non-zero");
+  for (int d = 0; d < DIM; ++d) s.gdir[d] /= gn;
+  if (s.dynamic) s.damping = Damping::None;
+  PetscFunctionReturn(0);
+}
+
+// The material table: one entry per model.
+enum class MaterialModel { LinearElastic = 0, NeoHookean = 1, DruckerPrager = 2, VonMises = 3 };
+const char *const MaterialModelNames[] = {"linear_elastic", "neo_hookean",   "drucker_prager",
+                                          "von_mises",      "MaterialModel", "MODEL_",
+                                          nullptr};
+const char *const DPMatchNames[] = {"outer", "inner", "plane_strain", "DPMatch", "DP_", nullptr};
+
+} // namespace
+
+PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, MaterialEntry &m) {
+  const std::string prefix = "mat_" + name + "_";
+  MaterialModel model = MaterialModel::LinearElastic;
+  PetscBool hasE = PETSC_FALSE, hasnu = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  m.name = name;
+  m.density = 0;
+  DruckerPragerParams dp;
+  dp.tension_cutoff = std::numeric_limits<double>::infinity();
+  VonMisesParams vm;
+  PetscOptionsBegin(comm, prefix.c_str(), ("Material " + name).c_str(), nullptr);
+  PetscCall(PetscOptionsEnum("-model", "Constitutive model", nullptr, MaterialModelNames,
+                             (PetscEnum)model, (PetscEnum *)&model, nullptr));
+  PetscCall(PetscOptionsReal("-E", "Young's modulus (Pa), > 0", nullptr, m.el.E, &m.el.E, &hasE));
+  PetscCall(PetscOptionsReal("-nu", "Poisson's ratio, -1 < nu < 0.5", nullptr, m.el.nu, &m.el.nu,
+                             &hasnu));
+  PetscCall(PetscOptionsReal("-gamma", "Unit weight (N/m^3), the body force, >= 0", nullptr,
+                             m.gamma, &m.gamma, nullptr));
+  PetscCall(PetscOptionsReal("-density",
+                             "Inertial density (kg/m^3), > 0; ignored under "
+                             "-inertia_scaling wave_speed",
+                             nullptr, m.density, &m.density, nullptr));
+  if (model == MaterialModel::DruckerPrager) {
+    PetscCall(PetscOptionsReal("-cohesion", "Drucker-Prager cohesion c (Pa), >= 0", nullptr,
+                               dp.cohesion, &dp.cohesion, nullptr));
+    PetscCall(PetscOptionsReal("-friction_angle", "Friction angle phi (degrees), 0..60", nullptr,
+                               dp.phi_deg, &dp.phi_deg, nullptr));
+    PetscCall(PetscOptionsReal("-dilation_angle", "Dilation angle psi (degrees), 0..phi", nullptr,
+                               dp.psi_deg, &dp.psi_deg, nullptr));
+    PetscCall(PetscOptionsReal("-hardening", "Linear hardening of cohesion dc/deps_p (Pa), >= 0",
+                               nullptr, dp.hardening, &dp.hardening, nullptr));
+    PetscCall(PetscOptionsReal("-tension_cutoff",
+                               "Largest mean stress p (Pa, tension > 0); "
+                               "default none",
+                               nullptr, dp.tension_cutoff, &dp.tension_cutoff, nullptr));
+    PetscCall(PetscOptionsEnum("-match", "Mohr-Coulomb matching: outer, inner, plane_strain",
+                               nullptr, DPMatchNames, (PetscEnum)dp.match, (PetscEnum *)&dp.match,
+                               nullptr));
+  }
+  if (model == MaterialModel::VonMises) {
+    PetscCall(PetscOptionsReal("-yield_stress", "von Mises initial yield stress (Pa), > 0", nullptr,
+                               vm.sigma_y0, &vm.sigma_y0, nullptr));
+    PetscCall(PetscOptionsReal("-hardening", "Linear isotropic hardening modulus H (Pa), >= 0",
+                               nullptr, vm.hardening, &vm.hardening, nullptr));
+  }
+  PetscOptionsEnd();
+  PetscCheck(hasE, comm, PETSC_ERR_USER_INPUT, "-%sE is required (Young's modulus in Pa)",
+             prefix.c_str());
+  PetscCheck(hasnu, comm, PETSC_ERR_USER_INPUT, "-%snu is required (Poisson's ratio)",
+             prefix.c_str());
+  PetscCheck(m.el.E > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sE must be > 0 (got %g)",
+             prefix.c_str(), m.el.E);
+  PetscCheck(m.el.nu > -1 && m.el.nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-%snu must be in (-1, 0.5) (got %g)", prefix.c_str(), m.el.nu);
+  PetscCheck(m.gamma >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sgamma must be >= 0 (got %g)",
+             prefix.c_str(), m.gamma);
+  PetscCheck(m.density >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sdensity must be > 0 (got %g)",
+             prefix.c_str(), m.density);
+  switch (model) {
+  case MaterialModel::LinearElastic:
+    m.model = std::make_unique<LinearElastic>(m.el);
+    break;
+  case MaterialModel::NeoHookean:
+    m.model = std::make_unique<NeoHookean>(m.el);
+    break;
+  case MaterialModel::DruckerPrager:
+    PetscCheck(dp.cohesion >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%scohesion must be >= 0",
+               prefix.c_str());
+    PetscCheck(dp.phi_deg >= 0 && dp.phi_deg <= 60, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%sfriction_angle must be in [0, 60] degrees (got %g)", prefix.c_str(), dp.phi_deg);
+    PetscCheck(dp.psi_deg >= 0 && dp.psi_deg <= dp.phi_deg, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%sdilation_angle must be in [0, friction_angle] (got %g)", prefix.c_str(),
+               dp.psi_deg);
+    PetscCheck(dp.hardening >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%shardening must be >= 0",
+               prefix.c_str());
+    PetscCheck(dp.phi_deg > 0 || dp.cohesion > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%scohesion and -%sfriction_angle cannot both be 0", prefix.c_str(),
+               prefix.c_str());
+    dp.el = m.el;
+    m.model = std::make_unique<DruckerPrager>(dp);
+    break;
+  case MaterialModel::VonMises:
+    PetscCheck(vm.sigma_y0 > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%syield_stress must be > 0 (got %g)", prefix.c_str(), vm.sigma_y0);
+    PetscCheck(vm.hardening >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%shardening must be >= 0",
+               prefix.c_str());
+    vm.el = m.el;
+    m.model = std::make_unique<VonMises>(vm);
+    break;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SimulationIndexParticles(Simulation &sim) {
+  ParticleView P;
+  PetscFunctionBeginUser;
+  PetscCall(ParticlesGetView(sim.parts, P));
+  for (auto &l : sim.mat_idx) l.clear();
+  sim.traction_idx.clear();
+  for (PetscInt p = 0; p < P.n; ++p) {
+    sim.mat_idx[P.mat[p]].push_back(static_cast<int>(p));
+    if (P.traction[p * DIM] != 0.0 || P.traction[p * DIM + 1] != 0.0) sim.traction_idx.push_back(p);
+  }
+  sim.dudx.resize(static_cast<size_t>(P.n) * DIM * DIM);
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SimulationSetup(Simulation &sim) {
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
+  PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
+  PetscCall(SettingsFromOptions(sim.comm, sim.set));
+  sim.scene = make_scene(sim.set.scene);
+  PetscCheck(sim.scene, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-scene %s is unknown; allowed: bar, column, landfill", sim.set.scene.c_str());
+  PetscCall(sim.scene->setup(sim));
+  PetscCheck(!sim.mats.empty(), sim.comm, PETSC_ERR_PLIB, "scene defined no material");
+
+  // Inertia: either the given densities, or one wave speed for all materials (the fastest
+  // physical one), which equalises the relaxation rate of stiff and soft layers. Loads come from
+  // gamma only, so the equilibrium is unchanged.
+  double cmax = 0;
+  for (auto &m : sim.mats) {
+    if (sim.set.inertia == InertiaScaling::None) {
+      PetscCheck(m.density > 0, sim.comm, PETSC_ERR_USER_INPUT,
+                 "-mat_%s_density is required (> 0) with -inertia_scaling none", m.name.c_str());
+    } else if (m.density <= 0) {
+      m.density = m.gamma > 0 ? m.gamma / 9.81 : 1000.0;
+    }
+    cmax = std::fmax(cmax, std::sqrt(m.model->wave_modulus() / m.density));
+  }
+  sim.wave_modulus.clear();
+  for (auto &m : sim.mats) {
+    if (sim.set.inertia == InertiaScaling::WaveSpeed)
+      m.density = m.model->wave_modulus() / (cmax * cmax);
+    sim.wave_modulus.push_back(m.model->wave_modulus());
+  }
+  sim.mat_idx.assign(sim.mats.size(), {});
+
+  PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, sim.grid));
+  PetscCall(ParticlesCreate(sim.grid, sim.parts));
+  std::vector<ParticleInit> init;
+  PetscCall(sim.scene->generate(sim, init));
+  PetscCall(ParticlesAdd(sim.parts, init));
+  PetscCall(SimulationIndexParticles(sim));
+  PetscInt n;
+  PetscCall(ParticlesGlobalCount(sim.parts, &n));
+  PetscCheck(n > 0, sim.comm, PETSC_ERR_USER_INPUT,
+             "the scene produced no particles: check the geometry options against -cell_size");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SimulationDestroy(Simulation &sim) {
+  PetscFunctionBeginUser;
+  PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
+  PetscCall(GridDestroy(sim.grid));
+  PetscFunctionReturn(0);
+}
+
+} // namespace pmpm

@@ -1,0 +1,61 @@
+"""Shared helpers for pmpm's scene tests: run the binary (optionally under mpiexec), read results."""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1")
+
+
+def run(exe, np, args, out, mpiexec="mpiexec", expect_ok=True, timeout=1200):
+    """Run pmpm on np ranks writing into out (removed first); return (returncode, output)."""
+    if os.path.isdir(out):
+        shutil.rmtree(out)
+    cmd = [mpiexec, "-n", str(np), exe] + list(args) + ["-output_dir", out, "-quiet"]
+    p = subprocess.run(cmd, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True, timeout=timeout)
+    if expect_ok and p.returncode != 0:
+        print(p.stdout)
+        sys.exit(f"FAIL: {' '.join(cmd)} exited with {p.returncode}")
+    return p.returncode, p.stdout
+
+
+def summary(out):
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)
+
+
+def particles(out, fields=("position", "stress")):
+    """Particle fields sorted by particle id (rank-independent order)."""
+    import h5py
+    import numpy as np
+    with h5py.File(os.path.join(out, "particles.h5"), "r") as f:
+        ids = f["particles/id"][:].astype(np.int64).ravel()
+        order = np.argsort(ids)
+        return ids[order], {k: f["particles/" + k][:][order] for k in fields}
+
+
+class Checks:
+    """Collects named checks; prints one line each and the closing count line."""
+
+    def __init__(self, name):
+        self.name, self.passed, self.failed = name, 0, 0
+
+    def check(self, what, ok, detail=""):
+        print(f"{'ok  ' if ok else 'FAIL'} {what} {detail}")
+        if ok:
+            self.passed += 1
+        else:
+            self.failed += 1
+
+    def le(self, what, value, bound):
+        self.check(what, value is not None and value <= bound, f"({value:.6g} <= {bound:.6g})")
+
+    def ge(self, what, value, bound):
+        self.check(what, value is not None and value >= bound, f"({value:.6g} >= {bound:.6g})")
+
+    def done(self):
+        print(f"{self.name}: {self.passed} passed, {self.failed} failed")
+        sys.exit(1 if self.failed or not self.passed else 0)

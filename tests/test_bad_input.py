@@ -1,0 +1,34 @@
+"""Bad input: each case must exit non-zero, name the offending option or file, and leave no output.
+
+usage: test_bad_input.py EXE OUTDIR
+"""
+import os
+import sys
+from pmpmtest import Checks, run
+
+exe, out = sys.argv[1], sys.argv[2]
+c = Checks("bad_input")
+cases = [
+    ("unknown shape", ["-options_file", "options/bar.opts", "-shape", "quadratic"], "-shape"),
+    ("unknown scene", ["-scene", "tunnel", "-cell_size", "0.1"], "-scene"),
+    ("negative modulus", ["-options_file", "options/bar.opts", "-mat_bar_E", "-5"], "-mat_bar_E"),
+    ("Poisson ratio 0.5", ["-options_file", "options/bar.opts", "-mat_bar_nu", "0.5"],
+     "-mat_bar_nu"),
+    ("missing options file", ["-options_file", "options/no_such_scene.opts"], "no_such_scene.opts"),
+    ("grid too small for the bar", ["-options_file", "options/bar.opts", "-bar_box_length", "1.0"],
+     "-bar_box_length"),
+    ("cell larger than the bar", ["-options_file", "options/bar.opts", "-cell_size", "0.3"],
+     "-bar_length"),
+    ("CFL above 1", ["-options_file", "options/bar.opts", "-cfl", "1.5"], "-cfl"),
+    ("ppc out of range", ["-options_file", "options/bar.opts", "-ppc", "0"], "-ppc"),
+    ("missing modulus", ["-scene", "column", "-cell_size", "0.125", "-mat_column_nu", "0.3",
+                         "-mat_column_gamma", "1"], "-mat_column_E"),
+]
+for what, args, needle in cases:
+    d = f"{out}/{what.replace(' ', '_')}"
+    code, text = run(exe, 1, args, d, expect_ok=False)
+    msg = next((l for l in text.splitlines() if l.startswith("pmpm: error") and needle in l), "")
+    c.check(f"{what}: non-zero exit", code != 0, f"(exit {code})")
+    c.check(f"{what}: message names {needle}", bool(msg), f"[{msg.strip()[:110]}]")
+    c.check(f"{what}: no output written", not os.path.exists(d))
+c.done()
