@@ -7,7 +7,7 @@
 namespace pmpm {
 
 namespace {
-PetscLogEvent ev_p2g, ev_l2g, ev_grid, ev_g2l, ev_g2p, ev_musl, ev_stress, ev_migrate;
+PetscLogEvent ev_p2g, ev_l2g, ev_grid, ev_g2l, ev_g2p, ev_musl, ev_stress, ev_migrate, ev_iface;
 
 template <class Shape>
 PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport &rep) {
@@ -24,10 +24,25 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   if (!sim.traction_idx.empty()) p2g_traction(P, sim.traction_idx, load.factor, G);
   PetscCall(GridRestoreLocal(g, G));
   PetscCall(PetscLogEventEnd(ev_p2g, 0, 0, 0, 0));
+  // 1b. Interface: body 1's own mass, momentum, force, and its colour gradient (the normals).
+  Grid &gb = sim.iface_grid.body;
+  const bool iface = sim.iface_grid.active;
+  if (iface) {
+    PetscCall(PetscLogEventBegin(ev_iface, 0, 0, 0, 0));
+    const PetscInt nb = static_cast<PetscInt>(sim.iface_idx.size());
+    PetscCall(GridGetLocal(gb, true, G));
+    p2g<Shape>(P, load, G, sim.iface_idx.data(), nb);
+    for (PetscInt q = 0; q < G.gm[0] * G.gm[1]; ++q)
+      for (int d = 0; d < DIM; ++d) G.data[q * GridDof::NDOF + GridDof::FEXT + d] = 0.0;
+    p2g_colour_gradient<Shape>(P, sim.iface_idx.data(), nb, G);
+    PetscCall(GridRestoreLocal(gb, G));
+    PetscCall(PetscLogEventEnd(ev_iface, 0, 0, 0, 0));
+  }
 
   // 2. Sum the ghost contributions across ranks.
   PetscCall(PetscLogEventBegin(ev_l2g, 0, 0, 0, 0));
   PetscCall(GridLocalToGlobalAdd(g));
+  if (iface) PetscCall(GridLocalToGlobalAdd(gb));
   PetscCall(PetscLogEventEnd(ev_l2g, 0, 0, 0, 0));
 
   // 3. Nodal momentum balance with damping and boundary conditions (eq. 1-2).
@@ -40,13 +55,29 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.face[f];
   PetscCall(GridGetGlobal(g, G));
   grid_update(G, gp, rep.grid);
-  PetscCall(GridRestoreGlobal(g, G));
   PetscCall(PetscLogEventEnd(ev_grid, 0, 0, 0, 0));
+  // 3b. Interface: friction-limited velocities of body 1 and body 2 where they meet.
+  if (iface) {
+    PetscCall(PetscLogEventBegin(ev_iface, 0, 0, 0, 0));
+    GridView B;
+    InterfaceParams ip = sim.iface;
+    ip.dt = dt;
+    ip.damping_alpha = gp.damping_alpha;
+    PetscCall(GridGetGlobal(gb, B));
+    interface_update(G, B, ip, rep.iface);
+    PetscCall(GridRestoreGlobal(gb, B));
+    PetscCall(PetscLogEventEnd(ev_iface, 0, 0, 0, 0));
+  }
+  PetscCall(GridRestoreGlobal(g, G));
 
   // 4. New nodal velocities and accelerations to the ghosts.
   PetscCall(PetscLogEventBegin(ev_g2l, 0, 0, 0, 0));
   PetscCall(GridGlobalToLocal(g));
+  if (iface) PetscCall(GridGlobalToLocal(gb));
   PetscCall(PetscLogEventEnd(ev_g2l, 0, 0, 0, 0));
+  GridView Gb;
+  if (iface) PetscCall(GridGetLocal(gb, false, Gb));
+  const GridView *G1 = iface ? &Gb : nullptr;
 
   // 5. Grid to particles: velocity (eq. 4). Under MUSL the updated particle momenta are mapped
   //    back to the grid and the nodal velocity is recomputed before the kinematics.
@@ -55,7 +86,7 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   pp.dt = dt;
   pp.pic = sim.set.pic;
   PetscCall(GridGetLocal(g, false, G));
-  g2p_velocity<Shape>(P, G, pp);
+  g2p_velocity<Shape>(P, G, G1, pp);
   PetscCall(GridRestoreLocal(g, G));
   PetscCall(PetscLogEventEnd(ev_g2p, 0, 0, 0, 0));
   if (sim.set.musl) {
@@ -74,8 +105,9 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   // 6. Particle kinematics: position, velocity gradient, F, volume (eq. 5, 20).
   PetscCall(PetscLogEventBegin(ev_g2p, 0, 0, 0, 0));
   PetscCall(GridGetLocal(g, false, G));
-  g2p_kinematics<Shape>(P, G, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);
+  g2p_kinematics<Shape>(P, G, G1, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);
   PetscCall(GridRestoreLocal(g, G));
+  if (iface) PetscCall(GridRestoreLocal(gb, Gb));
   PetscCall(PetscLogEventEnd(ev_g2p, 0, 0, 0, 0));
 
   // 7. Stress update, one batch per material (eq. 6).
@@ -107,6 +139,7 @@ PetscErrorCode LogRegister() {
   PetscCall(PetscLogEventRegister("GhostScatter", cls, &ev_g2l));
   PetscCall(PetscLogEventRegister("G2P", cls, &ev_g2p));
   PetscCall(PetscLogEventRegister("MUSLRemap", cls, &ev_musl));
+  PetscCall(PetscLogEventRegister("Interface", cls, &ev_iface));
   PetscCall(PetscLogEventRegister("StressUpdate", cls, &ev_stress));
   PetscCall(PetscLogEventRegister("Migrate", cls, &ev_migrate));
   PetscFunctionReturn(0);
@@ -127,10 +160,14 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &re
   // 8. Reductions: unbalanced force, loads, energy, wave speed, escapes (two allreduces).
   double mx[3] = {rep.grid.max_unbalanced, rep.g2p.max_speed,
                   static_cast<double>(rep.g2p.bad > 0 ? sim.rank + 1 : 0)};
-  double sm[4] = {rep.grid.sum_ext, rep.grid.n_ext, rep.g2p.kinetic,
-                  static_cast<double>(rep.g2p.left_rank)};
+  double sm[6] = {rep.grid.sum_ext,        rep.grid.n_ext,
+                  rep.g2p.kinetic,         static_cast<double>(rep.g2p.left_rank),
+                  rep.iface.contact_nodes, rep.iface.slip_nodes};
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPI_DOUBLE, MPI_MAX, sim.comm));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, 4, MPI_DOUBLE, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, 6, MPI_DOUBLE, MPI_SUM, sim.comm));
+  rep.iface.contact_nodes = sm[4];
+  rep.iface.slip_nodes = sm[5];
+  sim.iface_stats = rep.iface;
   rep.grid.max_unbalanced = mx[0];
   rep.g2p.max_speed = mx[1];
   rep.grid.sum_ext = sm[0];

@@ -57,6 +57,7 @@ PetscErrorCode Relax(Simulation &sim) {
     load.factor = s.ramp_steps > 0 ? std::fmin(1.0, double(run.step) / s.ramp_steps) : 1.0;
     PetscCall(Step(sim, load, run.dt, rep));
     run.time += run.dt;
+    PetscCall(sim.scene->monitor(sim));
     run.kinetic = rep.g2p.kinetic;
     const double mean_ext = rep.grid.n_ext > 0 ? rep.grid.sum_ext / rep.grid.n_ext : 0.0;
     run.ratio = mean_ext > 0 ? rep.grid.max_unbalanced / mean_ext

@@ -17,8 +17,8 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscInt ng = DIM;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
-  PetscCall(PetscOptionsString("-scene", "Scene: bar, column, landfill", nullptr, scene, scene,
-                               sizeof(scene), &set));
+  PetscCall(PetscOptionsString("-scene", "Scene: bar, column, landfill, incline", nullptr, scene,
+                               scene, sizeof(scene), &set));
   PetscCheck(set, comm, PETSC_ERR_USER_INPUT,
              "No scene given: pass -options_file options/<scene>.opts or -scene NAME "
              "(bar, column, landfill)");
@@ -203,7 +203,9 @@ PetscErrorCode SimulationIndexParticles(Simulation &sim) {
   PetscCall(ParticlesGetView(sim.parts, P));
   for (auto &l : sim.mat_idx) l.clear();
   sim.traction_idx.clear();
+  sim.iface_idx.clear();
   for (PetscInt p = 0; p < P.n; ++p) {
+    if (P.colour[p] > 0.5) sim.iface_idx.push_back(p);
     sim.mat_idx[P.mat[p]].push_back(static_cast<int>(p));
     if (P.traction[p * DIM] != 0.0 || P.traction[p * DIM + 1] != 0.0) sim.traction_idx.push_back(p);
   }
@@ -219,7 +221,8 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(SettingsFromOptions(sim.comm, sim.set));
   sim.scene = make_scene(sim.set.scene);
   PetscCheck(sim.scene, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-scene %s is unknown; allowed: bar, column, landfill", sim.set.scene.c_str());
+             "-scene %s is unknown; allowed: bar, column, landfill, incline",
+             sim.set.scene.c_str());
   PetscCall(sim.scene->setup(sim));
   PetscCheck(!sim.mats.empty(), sim.comm, PETSC_ERR_PLIB, "scene defined no material");
 
@@ -244,7 +247,36 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   }
   sim.mat_idx.assign(sim.mats.size(), {});
 
+  // Interface between colour-1 particles and the rest (skipped entirely when bonded).
+  PetscOptionsBegin(sim.comm, "interface_", "Interface of the colour-1 body (geomembrane)",
+                    nullptr);
+  PetscCall(PetscOptionsEnum("-type",
+                             "bonded (one velocity field), paper (Coulomb friction-slip of "
+                             "section 3.2), contact (Bardenhagen multi-velocity friction)",
+                             nullptr, InterfaceTypeNames, (PetscEnum)sim.iface.type,
+                             (PetscEnum *)&sim.iface.type, nullptr));
+  PetscCall(PetscOptionsReal("-mu_top", "Friction coefficient on the body's upper face, >= 0",
+                             nullptr, sim.iface.mu_top, &sim.iface.mu_top, nullptr));
+  PetscCall(PetscOptionsReal("-mu_bottom", "Friction coefficient on the body's lower face, >= 0",
+                             nullptr, sim.iface.mu_bottom, &sim.iface.mu_bottom, nullptr));
+  PetscCall(PetscOptionsReal("-min_share",
+                             "Smallest mass fraction of either body at a contact "
+                             "node (below it the node stays bonded), 0 < s < 0.5",
+                             nullptr, sim.iface.min_share, &sim.iface.min_share, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(sim.iface.min_share > 0 && sim.iface.min_share < 0.5, sim.comm,
+             PETSC_ERR_ARG_OUTOFRANGE, "-interface_min_share must be in (0, 0.5)");
+  PetscCheck(sim.iface.mu_top >= 0 && sim.iface.mu_bottom >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-interface_mu_top and -interface_mu_bottom must be >= 0");
+  PetscCheck(!(sim.set.musl && sim.iface.type != InterfaceType::Bonded), sim.comm, PETSC_ERR_SUP,
+             "-musl is not supported with -interface_type %s (use USL: -musl 0)",
+             InterfaceTypeNames[(int)sim.iface.type]);
+  for (int d = 0; d < DIM; ++d) sim.iface.up[d] = -sim.set.gdir[d];
+  for (int f = 0; f < 2 * DIM; ++f) sim.iface.face[f] = sim.face[f];
+
   PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, sim.grid));
+  if (sim.iface.type != InterfaceType::Bonded)
+    PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
   PetscCall(ParticlesCreate(sim.grid, sim.parts));
   std::vector<ParticleInit> init;
   PetscCall(sim.scene->generate(sim, init));
@@ -260,6 +292,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
 PetscErrorCode SimulationDestroy(Simulation &sim) {
   PetscFunctionBeginUser;
   PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
+  PetscCall(InterfaceGridDestroy(sim.iface_grid));
   PetscCall(GridDestroy(sim.grid));
   PetscFunctionReturn(0);
 }

@@ -16,10 +16,14 @@ void held_dofs(PetscInt i, PetscInt j, const PetscInt ncell[DIM], const FaceBC f
   }
 }
 
-template <class Shape> void p2g(const ParticleView &P, const Load &load, const GridView &G) {
+template <class Shape>
+void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
+         PetscInt nidx) {
   constexpr int NS = Shape::NS;
   Weights<Shape> W;
-  for (PetscInt p = 0; p < P.n; ++p) {
+  const PetscInt n = idx ? nidx : P.n;
+  for (PetscInt k = 0; k < n; ++k) {
+    const PetscInt p = idx ? idx[k] : k;
     weights<Shape>(P.x + p * DIM, P.lp + p * DIM, G.origin, G.h, W);
     const double m = P.mass[p], V = P.vol[p];
     const double *v = P.v + p * DIM, *s = P.stress + p * NSTRESS;
@@ -27,8 +31,8 @@ template <class Shape> void p2g(const ParticleView &P, const Load &load, const G
                             load.factor * P.weight[p] * load.gdir[1]};
     for (int b = 0; b < NS; ++b) {
       for (int a = 0; a < NS; ++a) {
-        const int k = b * NS + a;
-        const double w = W.w[k], gx = W.grad[k][0], gy = W.grad[k][1];
+        const int q = b * NS + a;
+        const double w = W.w[q], gx = W.grad[q][0], gy = W.grad[q][1];
         double *node = G.node(W.base[0] + a, W.base[1] + b);
         node[GridDof::M] += w * m;
         node[GridDof::P + 0] += w * m * v[0];
@@ -62,6 +66,24 @@ void p2g_traction(const ParticleView &P, const std::vector<PetscInt> &idx, doubl
           node[GridDof::F + d] += w * t[d];
           node[GridDof::FEXT + d] += w * t[d];
         }
+      }
+  }
+}
+
+template <class Shape>
+void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt nidx,
+                         const GridView &G) {
+  constexpr int NS = Shape::NS;
+  Weights<Shape> W;
+  for (PetscInt k = 0; k < nidx; ++k) {
+    const PetscInt p = idx[k];
+    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, G.origin, G.h, W);
+    const double vc = P.vol[p] * P.colour[p];
+    for (int b = 0; b < NS; ++b)
+      for (int a = 0; a < NS; ++a) {
+        double *node = G.node(W.base[0] + a, W.base[1] + b);
+        node[GridDof::FEXT + 0] += vc * W.grad[b * NS + a][0];
+        node[GridDof::FEXT + 1] += vc * W.grad[b * NS + a][1];
       }
   }
 }
@@ -102,12 +124,14 @@ void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) 
 }
 
 template <class Shape>
-void g2p_velocity(const ParticleView &P, const GridView &G, const G2PParams &prm) {
+void g2p_velocity(const ParticleView &P, const GridView &G0, const GridView *G1,
+                  const G2PParams &prm) {
   constexpr int NS = Shape::NS;
   const double dt = prm.dt, pic = prm.pic;
   Weights<Shape> W;
   for (PetscInt p = 0; p < P.n; ++p) {
     double *v = P.v + p * DIM;
+    const GridView &G = (G1 && P.colour[p] > 0.5) ? *G1 : G0; // interface body field
     weights<Shape>(P.x + p * DIM, P.lp + p * DIM, G.origin, G.h, W);
     double vg[DIM] = {0, 0}, ag[DIM] = {0, 0};
     for (int b = 0; b < NS; ++b)
@@ -154,8 +178,9 @@ void grid_velocity(const GridView &G, const FaceBC face[2 * DIM]) {
 }
 
 template <class Shape>
-void g2p_kinematics(const ParticleView &P, const GridView &G, const Grid &grid,
+void g2p_kinematics(const ParticleView &P, const GridView &G0, const GridView *G1, const Grid &grid,
                     const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats &st) {
+  const GridView &G = G0;
   constexpr int NS = Shape::NS;
   const double dt = prm.dt;
   const double lo[DIM] = {G.origin[0], G.origin[1]};
@@ -163,12 +188,13 @@ void g2p_kinematics(const ParticleView &P, const GridView &G, const Grid &grid,
   Weights<Shape> W;
   for (PetscInt p = 0; p < P.n; ++p) {
     double *x = P.x + p * DIM, *v = P.v + p * DIM, *F = P.F + p * DIM * DIM;
+    const GridView &Gp = (G1 && P.colour[p] > 0.5) ? *G1 : G0; // interface body field
     weights<Shape>(x, P.lp + p * DIM, G.origin, G.h, W);
     double vg[DIM] = {0, 0}, L[DIM * DIM] = {0, 0, 0, 0};
     for (int b = 0; b < NS; ++b) {
       for (int a = 0; a < NS; ++a) {
         const int k = b * NS + a;
-        const double *node = G.node(W.base[0] + a, W.base[1] + b);
+        const double *node = Gp.node(W.base[0] + a, W.base[1] + b);
         const double w = W.w[k], gx = W.grad[k][0], gy = W.grad[k][1];
         const double nvx = node[GridDof::P], nvy = node[GridDof::P + 1];
         vg[0] += w * nvx;
@@ -220,11 +246,16 @@ void g2p_kinematics(const ParticleView &P, const GridView &G, const Grid &grid,
 }
 
 #define PMPM_INSTANTIATE(S)                                                                        \
-  template void p2g<S>(const ParticleView &, const Load &, const GridView &);                      \
-  template void g2p_velocity<S>(const ParticleView &, const GridView &, const G2PParams &);        \
+  template void p2g<S>(const ParticleView &, const Load &, const GridView &, const PetscInt *,     \
+                       PetscInt);                                                                  \
+  template void p2g_colour_gradient<S>(const ParticleView &, const PetscInt *, PetscInt,           \
+                                       const GridView &);                                          \
+  template void g2p_velocity<S>(const ParticleView &, const GridView &, const GridView *,          \
+                                const G2PParams &);                                                \
   template void p2g_momentum<S>(const ParticleView &, const GridView &);                           \
-  template void g2p_kinematics<S>(const ParticleView &, const GridView &, const Grid &,            \
-                                  const G2PParams &, const double *, double *, G2PStats &);
+  template void g2p_kinematics<S>(const ParticleView &, const GridView &, const GridView *,        \
+                                  const Grid &, const G2PParams &, const double *, double *,       \
+                                  G2PStats &);
 PMPM_INSTANTIATE(LinearShape)
 PMPM_INSTANTIATE(UGIMPShape)
 #undef PMPM_INSTANTIATE

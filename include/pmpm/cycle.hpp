@@ -7,6 +7,7 @@ namespace pmpm {
 struct StepReport {
   GridStats grid;
   G2PStats g2p;
+  InterfaceStats iface;
 };
 
 PetscErrorCode LogRegister();

@@ -2,6 +2,7 @@
 // materials, the loads and boundary conditions, and the state of the relaxation.
 #pragma once
 #include "pmpm/grid.hpp"
+#include "pmpm/interface.hpp"
 #include "pmpm/material.hpp"
 #include "pmpm/particles.hpp"
 #include "pmpm/transfers.hpp"
@@ -33,7 +34,7 @@ struct Settings {
   Damping damping = Damping::Local;
   double damping_alpha = 0.8;
   PetscInt ramp_steps = 0;
-  double pic = 0.0;
+  double pic = 0.05; // a little PIC damps the FLIP velocity noise the grid cannot see
   InertiaScaling inertia = InertiaScaling::WaveSpeed;
   double gdir[DIM] = {0.0, -1.0};
   double progress_seconds = 2.0;
@@ -61,6 +62,8 @@ public:
   virtual PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) = 0;
   // Scene-specific results, as "key": value pairs appended to the summary's results object.
   virtual PetscErrorCode results(Simulation &sim, std::string &json) = 0;
+  // Called after every step (rank-collective); for scenes that record a time history.
+  virtual PetscErrorCode monitor(Simulation &) { return 0; }
   // Extra files (profiles); called after results, rank-collective.
   virtual PetscErrorCode write_files(Simulation &) { return 0; }
 };
@@ -95,6 +98,10 @@ struct Simulation {
 
   Grid grid;
   Particles parts;
+  InterfaceParams iface;                 // -interface_type, -interface_mu_top/bottom
+  InterfaceGrid iface_grid;              // body 1's field, only when an interface is on
+  std::vector<PetscInt> iface_idx;       // body-1 (colour 1) particles (this rank)
+  InterfaceStats iface_stats;            // last step's counts (global)
   std::vector<double> wave_modulus;      // per material
   std::vector<std::vector<int>> mat_idx; // particles of each material (this rank)
   std::vector<PetscInt> traction_idx;    // particles carrying a traction

@@ -21,7 +21,16 @@ struct Load {
   double gdir[DIM] = {0.0, -1.0}; // unit direction of gravity
 };
 
-template <class Shape> void p2g(const ParticleView &P, const Load &load, const GridView &G);
+// idx (nidx entries) restricts the sum to some particles (an interface body); null: all.
+template <class Shape>
+void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx = nullptr,
+         PetscInt nidx = 0);
+
+// Interface normals: the nodal gradient of the volume-weighted colour, sum_p V_p c_p grad S_ip,
+// into the FEXT slots (the paper's central difference of cell-average colour, section 3.2).
+template <class Shape>
+void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt nidx,
+                         const GridView &G);
 
 // Surface tractions act at the particle's face point x + tface; linear hats there give the
 // consistent nodal load of a traction on the body's face. idx lists the loaded particles.
@@ -65,8 +74,10 @@ void held_dofs(PetscInt i, PetscInt j, const PetscInt ncell[DIM], const FaceBC f
                bool held[DIM]);
 
 // Particle velocity from the nodal acceleration (FLIP, eq. 4) blended with the nodal velocity.
+// G1 (may be null): the interface body's nodal field, read by particles with colour 1.
 template <class Shape>
-void g2p_velocity(const ParticleView &P, const GridView &G, const G2PParams &prm);
+void g2p_velocity(const ParticleView &P, const GridView &G, const GridView *G1,
+                  const G2PParams &prm);
 
 // MUSL: mass and momentum of the updated particle velocities back to the grid, and the nodal
 // velocity p/m with the boundary conditions (bounded even at nodes with tiny mass).
@@ -76,7 +87,7 @@ void grid_velocity(const GridView &G, const FaceBC face[2 * DIM]);
 // Particle kinematics from the nodal velocity: position (eq. 5), L dt into dudx (eq. 20),
 // F <- (I + L dt) F, volume J V0; wave speeds and escape/instability checks into stats.
 template <class Shape>
-void g2p_kinematics(const ParticleView &P, const GridView &G, const Grid &grid,
+void g2p_kinematics(const ParticleView &P, const GridView &G, const GridView *G1, const Grid &grid,
                     const G2PParams &prm, const double *wave_modulus, double *dudx,
                     G2PStats &stats);
 

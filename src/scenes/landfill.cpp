@@ -1,0 +1,280 @@
+// The landfill cover of the seed paper, Section 4 (Figure 6, Table I; REFERENCE.md 1.1-1.4):
+// waste 30 mm, geomembrane 1 mm, cover soil 8 mm, 30 mm wide, a soft 6 mm-diameter zone just
+// below the membrane at X = 15 mm; base fixed, sides on rollers, plane strain; unit weights of
+// Table I applied as body forces. The membrane can be the regular particle fill or N layers of
+// particles across its thickness (N = 1 is the paper's single layer).
+//
+// Results: the membrane's mid-surface profile (per column of membrane particles: position,
+// displacement, chain strain = current/initial length of the mid-surface chain, the particles'
+// own axial strain from F, axial stress), settlements, and Giroud's analytical solution in the
+// paper's form (simulated sag plugged in) and in the self-consistent form (J = E t).
+#include "pmpm/giroud.hpp"
+#include "pmpm/output.hpp"
+#include "pmpm/scene_util.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+namespace pmpm {
+
+namespace {
+enum Mat { SOIL = 0, MEMBRANE = 1, WASTE = 2, SOFT = 3 };
+const char *const kMatNames[] = {"soil", "membrane", "waste", "soft"};
+
+struct ProfilePoint {
+  double x0, y0, x, y, strain_particle, stress_axial, s0 = 0, strain_chain = 0;
+};
+} // namespace
+
+class LandfillScene final : public Scene {
+  // geometry (m)
+  double W_ = 0.030, Hw_ = 0.030, t_ = 0.001, Hs_ = 0.008, D_ = 0.006, Xc_ = 0.015;
+  PetscInt layers_ = 0;
+  std::vector<ProfilePoint> prof_; // rank 0: membrane mid-surface profile
+
+  // Gather the membrane particles to rank 0 and reduce them to a mid-surface profile.
+  PetscErrorCode BuildProfile(Simulation &sim) {
+    ParticleView P;
+    PetscFunctionBeginUser;
+    constexpr int NF = 8; // x0 y0 x y strain_particle stress_axial, volume0, spare
+    std::vector<double> mine;
+    PetscCall(ParticlesGetView(sim.parts, P));
+    for (PetscInt p = 0; p < P.n; ++p) {
+      if (P.mat[p] != MEMBRANE) continue;
+      const double *F = P.F + p * DIM * DIM, *s = P.stress + p * NSTRESS;
+      // axial direction: the initial x axis, carried by F
+      const double ax = F[0], ay = F[2], lam = std::hypot(ax, ay);
+      const double tx = ax / lam, ty = ay / lam;
+      const double sig = tx * tx * s[0] + ty * ty * s[1] + 2 * tx * ty * s[3];
+      const double row[NF] = {
+          P.x0[p * DIM], P.x0[p * DIM + 1], P.x[p * DIM], P.x[p * DIM + 1], lam - 1.0,
+          sig,           P.vol0[p],         0.0};
+      mine.insert(mine.end(), row, row + NF);
+    }
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    int n = static_cast<int>(mine.size());
+    std::vector<int> counts(sim.size), displs(sim.size, 0);
+    PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, sim.comm));
+    int total = 0;
+    if (sim.rank == 0)
+      for (int r = 0; r < sim.size; ++r) {
+        displs[r] = total;
+        total += counts[r];
+      }
+    std::vector<double> all(sim.rank == 0 ? total : 0);
+    PetscCallMPI(MPI_Gatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
+                             MPI_DOUBLE, 0, sim.comm));
+    prof_.clear();
+    if (sim.rank != 0) PetscFunctionReturn(0);
+    // Columns of membrane particles share x0; the volume-weighted column average is the
+    // mid-surface point (the layers are symmetric about the mid-plane).
+    std::map<long, std::vector<const double *>> cols;
+    const double dx = sim.set.h / sim.set.ppc;
+    for (int k = 0; k < total; k += NF) cols[std::lround(all[k] / (0.5 * dx))].push_back(&all[k]);
+    for (auto &c : cols) {
+      ProfilePoint q{};
+      double wsum = 0;
+      for (const double *r : c.second) {
+        const double w = r[6];
+        q.x0 += w * r[0];
+        q.y0 += w * r[1];
+        q.x += w * r[2];
+        q.y += w * r[3];
+        q.strain_particle += w * r[4];
+        q.stress_axial += w * r[5];
+        wsum += w;
+      }
+      q.x0 /= wsum, q.y0 /= wsum, q.x /= wsum, q.y /= wsum;
+      q.strain_particle /= wsum, q.stress_axial /= wsum;
+      prof_.push_back(q);
+    }
+    // Chain strain: each segment's current over initial length, averaged onto its two ends.
+    const size_t m = prof_.size();
+    std::vector<double> seg(m > 0 ? m - 1 : 0);
+    for (size_t k = 0; k + 1 < m; ++k) {
+      const double L0 = std::hypot(prof_[k + 1].x0 - prof_[k].x0, prof_[k + 1].y0 - prof_[k].y0);
+      const double L = std::hypot(prof_[k + 1].x - prof_[k].x, prof_[k + 1].y - prof_[k].y);
+      seg[k] = L / L0 - 1.0;
+      prof_[k + 1].s0 = prof_[k].s0 + L0;
+    }
+    for (size_t k = 0; k < m; ++k) {
+      if (k == 0)
+        prof_[k].strain_chain = seg.empty() ? 0 : seg[0];
+      else if (k + 1 == m)
+        prof_[k].strain_chain = seg[k - 1];
+      else
+        prof_[k].strain_chain = 0.5 * (seg[k - 1] + seg[k]);
+    }
+    PetscFunctionReturn(0);
+  }
+
+  // Vertical displacement of the mid-surface at initial X (linear interpolation), rank 0.
+  double uy_at(double X) const {
+    if (X <= prof_.front().x0) return prof_.front().y - prof_.front().y0;
+    for (size_t k = 0; k + 1 < prof_.size(); ++k)
+      if (X <= prof_[k + 1].x0) {
+        const double a = (X - prof_[k].x0) / (prof_[k + 1].x0 - prof_[k].x0);
+        return (1 - a) * (prof_[k].y - prof_[k].y0) + a * (prof_[k + 1].y - prof_[k + 1].y0);
+      }
+    return prof_.back().y - prof_.back().y0;
+  }
+
+public:
+  PetscErrorCode setup(Simulation &sim) override {
+    PetscFunctionBeginUser;
+    PetscOptionsBegin(sim.comm, "landfill_", "Landfill cover (paper Section 4)", nullptr);
+    PetscCall(PetscOptionsReal("-width", "Domain width (m)", nullptr, W_, &W_, nullptr));
+    PetscCall(
+        PetscOptionsReal("-waste_height", "Waste thickness (m)", nullptr, Hw_, &Hw_, nullptr));
+    PetscCall(PetscOptionsReal("-membrane_thickness", "Geomembrane thickness t (m)", nullptr, t_,
+                               &t_, nullptr));
+    PetscCall(PetscOptionsReal("-soil_height", "Cover soil thickness H (m)", nullptr, Hs_, &Hs_,
+                               nullptr));
+    PetscCall(PetscOptionsReal("-soft_diameter",
+                               "Soft zone diameter b (m), touching the "
+                               "membrane's underside",
+                               nullptr, D_, &D_, nullptr));
+    PetscCall(PetscOptionsReal("-soft_x", "Soft zone centre X (m)", nullptr, Xc_, &Xc_, nullptr));
+    PetscCall(PetscOptionsInt("-membrane_layers",
+                              "Particle layers across the membrane: 0 = the "
+                              "regular fill (ppc per cell), N >= 1 = N layers (1: the paper's)",
+                              nullptr, layers_, &layers_, nullptr));
+    PetscOptionsEnd();
+    PetscInt nW, nWaste, nT, nS;
+    PetscCall(CheckCells(sim.comm, "-landfill_width", W_, sim.set.h, &nW));
+    PetscCall(CheckCells(sim.comm, "-landfill_waste_height", Hw_, sim.set.h, &nWaste));
+    PetscCall(CheckCells(sim.comm, "-landfill_soil_height", Hs_, sim.set.h, &nS));
+    if (layers_ == 0)
+      PetscCall(CheckCells(sim.comm,
+                           "-landfill_membrane_thickness (with -landfill_membrane_layers 0)", t_,
+                           sim.set.h, &nT));
+    PetscCheck(layers_ >= 0 && layers_ <= 16, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-landfill_membrane_layers must be in 0..16 (got %" PetscInt_FMT ")", layers_);
+    PetscCheck(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-landfill_membrane_thickness must be > 0");
+    PetscCheck(
+        D_ > 0 && D_ < Hw_ && Xc_ - D_ / 2 > 0 && Xc_ + D_ / 2 < W_, sim.comm,
+        PETSC_ERR_ARG_OUTOFRANGE,
+        "-landfill_soft_diameter %g / -landfill_soft_x %g: the soft zone must lie inside the "
+        "waste",
+        D_, Xc_);
+    const double top = Hw_ + t_ + Hs_;
+    sim.origin[0] = sim.origin[1] = 0;
+    sim.ncell[0] = nW;
+    sim.ncell[1] = static_cast<PetscInt>(std::ceil(top / sim.set.h - 1e-9)) + 2;
+    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
+    sim.face[YMIN] = FaceBC::Fixed;
+    sim.mats.resize(4);
+    for (int m = 0; m < 4; ++m) PetscCall(MaterialFromOptions(sim.comm, kMatNames[m], sim.mats[m]));
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+    PetscFunctionBeginUser;
+    const double Hw = Hw_, t = t_, top = Hw_ + t_ + Hs_, r = D_ / 2, xc = Xc_, yc = Hw_ - D_ / 2;
+    const bool layered = layers_ > 0;
+    auto at = [=](const double x[DIM]) -> int {
+      if (x[1] >= top) return -1;
+      if (x[1] >= Hw + t) return SOIL;
+      if (x[1] >= Hw) return layered ? -1 : MEMBRANE;
+      if ((x[0] - xc) * (x[0] - xc) + (x[1] - yc) * (x[1] - yc) < r * r) return SOFT;
+      return WASTE;
+    };
+    FillRegular(sim, at, out);
+    for (auto &q : out) q.colour = q.mat == MEMBRANE ? 1.0 : 0.0;
+    if (layered) {
+      // N rows across the thickness, h/ppc apart along it; a row's block half-height is capped
+      // at h/2 (the PMPM support spans at most two cells per direction).
+      const double dx = sim.set.h / sim.set.ppc, dy = t_ / layers_;
+      const PetscInt ncol = static_cast<PetscInt>(std::llround(W_ / dx));
+      const PetscInt base = sim.ncell[0] * sim.ncell[1] * sim.set.ppc * sim.set.ppc;
+      for (PetscInt k = 0; k < layers_; ++k)
+        for (PetscInt i = 0; i < ncol; ++i) {
+          ParticleInit q{};
+          q.x[0] = (i + 0.5) * dx;
+          q.x[1] = Hw_ + (k + 0.5) * dy;
+          const PetscInt c[DIM] = {static_cast<PetscInt>(std::floor(q.x[0] / sim.set.h)),
+                                   static_cast<PetscInt>(std::floor(q.x[1] / sim.set.h))};
+          if (!sim.grid.owns_cell(c)) continue;
+          q.lp[0] = 0.5 * dx;
+          q.lp[1] = std::fmin(0.5 * dy, 0.5 * sim.set.h);
+          q.vol = dx * dy;
+          q.mat = MEMBRANE;
+          q.density = sim.mats[MEMBRANE].density;
+          q.gamma = sim.mats[MEMBRANE].gamma;
+          q.colour = 1.0;
+          q.pid = base + k * ncol + i;
+          out.push_back(q);
+        }
+    }
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode results(Simulation &sim, std::string &json) override {
+    PetscFunctionBeginUser;
+    PetscCall(BuildProfile(sim));
+    if (sim.rank != 0) PetscFunctionReturn(0);
+    PetscCheck(prof_.size() >= 3, PETSC_COMM_SELF, PETSC_ERR_PLIB, "membrane has < 3 columns");
+    const double centre = -uy_at(Xc_);
+    const double wall = -0.5 * (uy_at(prof_.front().x0) + uy_at(prof_.back().x0));
+    const double sag = centre + 0.5 * (uy_at(Xc_ - D_ / 2) + uy_at(Xc_ + D_ / 2));
+    size_t kmax = 0, kmin = 0, smax = 0;
+    for (size_t k = 0; k < prof_.size(); ++k) {
+      if (prof_[k].strain_chain > prof_[kmax].strain_chain) kmax = k;
+      if (prof_[k].strain_chain < prof_[kmin].strain_chain) kmin = k;
+      if (std::fabs(prof_[k].stress_axial) > std::fabs(prof_[smax].stress_axial)) smax = k;
+    }
+    double pk_particle = -1e300;
+    for (const auto &q : prof_) pk_particle = std::fmax(pk_particle, q.strain_particle);
+    const double gamma = sim.mats[SOIL].gamma, E = sim.mats[MEMBRANE].el.E;
+    std::string paper = "null", selfc = "null";
+    try {
+      const auto gp = giroud::paper_form(gamma, D_, Hs_, 0.0, t_, sag);
+      paper = "{" + json_kv("sag", gp.sag) + ", " + json_kv("strain", gp.strain) + ", " +
+              json_kv("stress", gp.stress) + ", " + json_kv("pressure", gp.pressure) + "}";
+    } catch (const std::exception &) { // a non-positive sag has no membrane solution
+    }
+    try {
+      const auto gs = giroud::self_consistent(gamma, D_, Hs_, 0.0, t_, E);
+      selfc = "{" + json_kv("sag", gs.sag) + ", " + json_kv("strain", gs.strain) + ", " +
+              json_kv("stress", gs.stress) + ", " + json_kv("pressure", gs.pressure) + "}";
+    } catch (const std::exception &) {
+    }
+    const char *sep = ",\n    ";
+    json = json_kv("settlement_centre", centre) + sep + json_kv("settlement_wall", wall) + sep +
+           json_kv("differential_settlement", centre - wall) + sep + json_kv("sag", sag) + sep +
+           json_kv("peak_axial_strain", prof_[kmax].strain_chain) + sep +
+           json_kv("peak_axial_strain_x", prof_[kmax].x0) + sep +
+           json_kv("peak_axial_strain_particle", pk_particle) + sep +
+           json_kv("min_axial_strain", prof_[kmin].strain_chain) + sep +
+           json_kv("peak_axial_stress", prof_[smax].stress_axial) + sep +
+           json_kv("peak_axial_stress_x", prof_[smax].x0) + sep +
+           json_kv("membrane_layers", double(layers_)) + sep + "\"giroud\": {\"paper\": " + paper +
+           ", \"self_consistent\": " + selfc + "}";
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode write_files(Simulation &sim) override {
+    PetscFunctionBeginUser;
+    if (sim.rank == 0) {
+      const std::string path = sim.set.output_dir + "/membrane_profile.csv";
+      FILE *f = std::fopen((path + ".tmp").c_str(), "w");
+      PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
+      std::fprintf(f, "s0,x0,y0,x,y,ux,uy,strain_chain,strain_particle,stress_axial\n");
+      for (const auto &q : prof_)
+        std::fprintf(f, "%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e\n", q.s0, q.x0,
+                     q.y0, q.x, q.y, q.x - q.x0, q.y - q.y0, q.strain_chain, q.strain_particle,
+                     q.stress_axial);
+      std::fclose(f);
+    }
+    PetscCall(OutputCommit(sim, "membrane_profile.csv"));
+    PetscFunctionReturn(0);
+  }
+};
+
+std::unique_ptr<Scene> make_landfill_scene() {
+  return std::make_unique<LandfillScene>();
+}
+
+} // namespace pmpm

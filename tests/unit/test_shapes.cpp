@@ -1,0 +1,295 @@
+// Unit tests of the shape functions (shape.hpp): LinearShape (standard MPM) and UGIMPShape
+// (the paper's PMPM, eq. 14-15, 20), through the 2D tensor-product weights() that every kernel
+// uses. Properties checked at many random particles (fixed seed):
+//   partition of unity, zero gradient sum, linear completeness of weights and gradients,
+//   PMPM == linear for a block inside one cell, the PMPM weight as a block average of the 2D hat
+//   (numerical quadrature) and its gradient (finite differences), and continuity of the PMPM
+//   weights and gradients as a block crosses a cell face (where the linear gradient jumps).
+#include "check.hpp"
+#include "pmpm/shape.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+using namespace pmpm;
+
+namespace {
+
+// Deterministic generator (64-bit LCG), uniform in [0, 1).
+struct Lcg {
+  std::uint64_t s = 0x2545F4914F6CDD1Dull;
+  double next() {
+    s = s * 6364136223846793005ull + 1442695040888963407ull;
+    return double(s >> 11) / double(1ull << 53);
+  }
+  double uniform(double a, double b) { return a + (b - a) * next(); }
+};
+
+// A grid that is not aligned with 0 and a cell size that is not a power of two, so that the
+// conversions x -> xi = (x - origin)/h round.
+const double H = 0.37;
+const double ORIGIN[DIM] = {-1.3, 0.7};
+const int NSAMPLE = 2000;
+// Smallest PMPM half-size drawn in the random tests, in cell units. The weight is a difference of
+// two hat integrals of size O(1) divided by 2 l: its round-off is ~ eps / l, i.e. ~ 1e-15 for
+// l >= 0.05 h, which the 1e-14 tolerances below accept. (Smaller l only amplifies round-off.)
+const double LMIN = 0.05;
+
+template <class Shape> double node_x(const Weights<Shape> &W, int k, int d) {
+  const int a = (d == 0) ? k % Shape::NS : k / Shape::NS;
+  return ORIGIN[d] + (W.base[d] + a) * H;
+}
+
+// Weight and gradient of global node (i, j), zero outside the support.
+template <class Shape>
+void at_node(const Weights<Shape> &W, int i, int j, double &w, double g[DIM]) {
+  w = g[0] = g[1] = 0.0;
+  const int a = i - W.base[0], b = j - W.base[1];
+  if (a < 0 || a >= Shape::NS || b < 0 || b >= Shape::NS) return;
+  const int k = b * Shape::NS + a;
+  w = W.w[k];
+  g[0] = W.grad[k][0];
+  g[1] = W.grad[k][1];
+}
+
+void random_particle(Lcg &r, double x[DIM], double l[DIM]) {
+  for (int d = 0; d < DIM; ++d) {
+    const double li = r.uniform(LMIN, 0.5);
+    double xi = r.uniform(2.0, 12.0);
+    // Now and then put a block edge just past a cell face (by 1e-7 to 1e-1 cells): that is where
+    // uGIMP's first support node changes, and where an off-by-one support loses a small weight.
+    if (r.next() < 0.2) {
+      const double c = std::floor(xi), delta = std::pow(10.0, r.uniform(-7.0, -1.0));
+      xi = (r.next() < 0.5) ? c + li - delta : c - li + delta;
+    }
+    x[d] = ORIGIN[d] + xi * H;
+    l[d] = li * H;
+  }
+  // Hit the largest admissible block (l = h/2) exactly now and then.
+  if (r.next() < 0.1) l[0] = 0.5 * H;
+  if (r.next() < 0.1) l[1] = 0.5 * H;
+}
+
+// Partition of unity, zero gradient sum and linear completeness.
+template <class Shape> void test_basic_properties(Lcg &r) {
+  Weights<Shape> W;
+  for (int n = 0; n < NSAMPLE; ++n) {
+    double x[DIM], l[DIM];
+    random_particle(r, x, l);
+    weights<Shape>(x, l, ORIGIN, H, W);
+    double sw = 0, sg[DIM] = {0, 0}, swx[DIM] = {0, 0}, sgx[DIM][DIM] = {{0, 0}, {0, 0}};
+    bool nonneg = true;
+    for (int k = 0; k < Weights<Shape>::NN; ++k) {
+      sw += W.w[k];
+      nonneg = nonneg && W.w[k] >= 0.0;
+      for (int d = 0; d < DIM; ++d) {
+        sg[d] += W.grad[k][d];
+        swx[d] += W.w[k] * node_x(W, k, d);
+        for (int e = 0; e < DIM; ++e) sgx[d][e] += W.grad[k][e] * node_x(W, k, d);
+      }
+    }
+    // Nine O(1) products summed: round-off a few 1e-16.
+    CHECK_CLOSE(sw, 1.0, 1e-14);
+    CHECK(nonneg);
+    // Gradients are O(1/h) (uGIMP: up to 1/h): their sum has round-off ~ 1e-15/h.
+    for (int d = 0; d < DIM; ++d) CHECK_CLOSE(sg[d], 0.0, 1e-12 / H);
+    // sum w_k x_k: node coordinates are O(5) m, so round-off is ~ 1e-15 * 5; 1e-13 m leaves room.
+    for (int d = 0; d < DIM; ++d) CHECK_CLOSE(swx[d], x[d], 1e-13);
+    // sum_k x_k (grad_k)^T = I (row d: coordinate d; column e: derivative direction e). The terms
+    // are |x_k| / h ~ 15, so cancellation leaves ~ 1e-14; 1e-12 is a safe bound.
+    for (int d = 0; d < DIM; ++d)
+      for (int e = 0; e < DIM; ++e) CHECK_CLOSE(sgx[d][e], d == e ? 1.0 : 0.0, 1e-12);
+  }
+}
+
+// PMPM reduces to linear MPM when the block [x - l, x + l] lies inside one cell in both directions.
+void test_pmpm_equals_linear_inside_cell(Lcg &r) {
+  Weights<LinearShape> WL;
+  Weights<UGIMPShape> WU;
+  for (int n = 0; n < NSAMPLE; ++n) {
+    double x[DIM], l[DIM];
+    for (int d = 0; d < DIM; ++d) {
+      const double li = r.uniform(LMIN, 0.499);
+      const int c = 2 + static_cast<int>(r.next() * 10);
+      // centre in (c + li, c + 1 - li), kept 1e-6 away from the ends so rounding of xi cannot
+      // move the block edge onto the neighbour cell
+      const double xi = c + r.uniform(li + 1e-6, 1.0 - li - 1e-6);
+      x[d] = ORIGIN[d] + xi * H;
+      l[d] = li * H;
+    }
+    weights<LinearShape>(x, l, ORIGIN, H, WL);
+    weights<UGIMPShape>(x, l, ORIGIN, H, WU);
+    CHECK(WL.base[0] == WU.base[0] && WL.base[1] == WU.base[1]);
+    // every node of either support, compared by global index (uGIMP's third node must be 0)
+    double maxdw = 0, maxdg = 0;
+    for (int j = WU.base[1]; j < WU.base[1] + 3; ++j)
+      for (int i = WU.base[0]; i < WU.base[0] + 3; ++i) {
+        double wl, gl[DIM], wu, gu[DIM];
+        at_node(WL, i, j, wl, gl);
+        at_node(WU, i, j, wu, gu);
+        maxdw = std::max(maxdw, std::fabs(wl - wu));
+        for (int d = 0; d < DIM; ++d) maxdg = std::max(maxdg, std::fabs(gl[d] - gu[d]));
+      }
+    // uGIMP computes 1 - s as [(1 - s + l)^2 - (1 - s - l)^2] / 4l: round-off ~ eps / l < 1e-14.
+    CHECK_CLOSE(maxdw, 0.0, 1e-14);
+    // gradients: the same relative round-off, times 1/h
+    CHECK_CLOSE(maxdg, 0.0, 1e-14 / H);
+  }
+}
+
+// Independent 1D hat of node i at physical coordinate x in direction d.
+double hat1d(int i, double x, int d) {
+  return std::max(0.0, 1.0 - std::fabs((x - ORIGIN[d]) / H - i));
+}
+
+// Midpoint-rule average over [x - l, x + l] of the 1D hat of node i in direction d.
+double hat_average(int i, double x, double l, int d, int nq) {
+  double sum = 0.0;
+  for (int q = 0; q < nq; ++q) sum += hat1d(i, x - l + (q + 0.5) * (2.0 * l / nq), d);
+  return sum / nq;
+}
+
+// PMPM weight = block average of the 2D hat N_i(x) N_j(y) (eq. 14-15): n x n midpoint rule over
+// the block. The 2D hat is a product, so the n x n midpoint sum is exactly (up to round-off) the
+// product of the two 1D midpoint sums; that is how it is evaluated (n^2 = 4e6 points per node
+// would be too slow). The quadrature uses its own hat, independent of shape.hpp.
+//
+// Error bound: the hat is piecewise linear, so the 1D midpoint rule is exact on every quadrature
+// cell that no kink (node - h, node, node + h) crosses. A kink with slope jump J inside a
+// quadrature cell of width q = 2l/n errs by <= J q^2 / 8; the jumps add up to 4/h, so the error
+// of the average is <= (4/h) q^2 / 8 / (2 l) = l / (h n^2). For the product of two averages (both
+// <= 1) the errors add: (l_x + l_y) / (h n^2) <= 2.5e-7 for n = 2000 and l <= h/2. A wrong weight
+// formula errs by O(1e-2) or more.
+void test_pmpm_weight_is_block_average(Lcg &r) {
+  const int NQ = 2000, NP = 200;
+  Weights<UGIMPShape> W;
+  for (int n = 0; n < NP; ++n) {
+    double x[DIM], l[DIM];
+    random_particle(r, x, l);
+    weights<UGIMPShape>(x, l, ORIGIN, H, W);
+    const double tol = (l[0] + l[1]) / (H * NQ * double(NQ)) + 1e-14;
+    double ax[5], ay[5];
+    for (int a = 0; a < 5; ++a) {
+      ax[a] = hat_average(W.base[0] - 1 + a, x[0], l[0], 0, NQ);
+      ay[a] = hat_average(W.base[1] - 1 + a, x[1], l[1], 1, NQ);
+    }
+    double maxerr = 0.0, maxw = 0.0;
+    // nodes one beyond the support too: the block average must vanish there as well
+    for (int b = 0; b < 5; ++b)
+      for (int a = 0; a < 5; ++a) {
+        double w, g[DIM];
+        at_node(W, W.base[0] - 1 + a, W.base[1] - 1 + b, w, g);
+        maxerr = std::max(maxerr, std::fabs(w - ax[a] * ay[b]));
+        maxw = std::max(maxw, w);
+      }
+    CHECK_CLOSE(maxerr, 0.0, tol);
+    CHECK(maxw > 0.1); // the comparison is not vacuous
+  }
+}
+
+// PMPM gradient = derivative of the weight: centred finite differences in x and in y.
+//
+// Error bound: per direction the weight is (I(s + l) - I(s - l)) / 2l with I the hat's integral,
+// a piecewise quadratic, so the weight is piecewise quadratic in xi and C1. The centred difference
+// is exact for quadratics; a jump J of the second derivative within +-delta errs by <= J delta/4.
+// The jumps of S'' = (hat'(s + l) - hat'(s - l)) / 2l add up to <= 8 / 2l = 4/l, so the
+// truncation error is <= delta / l (cell units). Round-off: ~ 2 eps / (2 delta). In physical units
+// both are divided by h. With delta = 1e-7 cells: <= 2e-6 / h + 1e-9 / h.
+void test_pmpm_gradient_is_derivative(Lcg &r) {
+  const double delta = 1e-7; // cell units
+  Weights<UGIMPShape> W, Wp, Wm;
+  for (int n = 0; n < NSAMPLE; ++n) {
+    double x[DIM], l[DIM];
+    random_particle(r, x, l);
+    weights<UGIMPShape>(x, l, ORIGIN, H, W);
+    for (int e = 0; e < DIM; ++e) {
+      double xp[DIM] = {x[0], x[1]}, xm[DIM] = {x[0], x[1]};
+      xp[e] += delta * H;
+      xm[e] -= delta * H;
+      weights<UGIMPShape>(xp, l, ORIGIN, H, Wp);
+      weights<UGIMPShape>(xm, l, ORIGIN, H, Wm);
+      const double tol = (delta / (l[e] / H) + 1e-9) / H;
+      double maxerr = 0.0;
+      for (int j = W.base[1] - 1; j <= W.base[1] + 3; ++j)
+        for (int i = W.base[0] - 1; i <= W.base[0] + 3; ++i) {
+          double w, g[DIM], wp, gp[DIM], wm, gm[DIM];
+          at_node(W, i, j, w, g);
+          at_node(Wp, i, j, wp, gp);
+          at_node(Wm, i, j, wm, gm);
+          maxerr = std::max(maxerr, std::fabs(g[e] - (wp - wm) / (2.0 * delta * H)));
+        }
+      CHECK_CLOSE(maxerr, 0.0, tol);
+    }
+  }
+}
+
+// Largest change of any node's weight and gradient between particles at xa and xb.
+template <class Shape>
+void node_jumps(const double *xa, const double *xb, const double *l, double &dw, double &dg) {
+  Weights<Shape> Wa, Wb;
+  weights<Shape>(xa, l, ORIGIN, H, Wa);
+  weights<Shape>(xb, l, ORIGIN, H, Wb);
+  dw = dg = 0.0;
+  const int i0 = std::min(Wa.base[0], Wb.base[0]), j0 = std::min(Wa.base[1], Wb.base[1]);
+  for (int j = j0; j <= j0 + Shape::NS; ++j)
+    for (int i = i0; i <= i0 + Shape::NS; ++i) {
+      double wa, ga[DIM], wb, gb[DIM];
+      at_node(Wa, i, j, wa, ga);
+      at_node(Wb, i, j, wb, gb);
+      dw = std::max(dw, std::fabs(wa - wb));
+      for (int d = 0; d < DIM; ++d) dg = std::max(dg, std::fabs(ga[d] - gb[d]));
+    }
+}
+
+// Crossing a cell face. PMPM: the block's edge (where the support's base node changes) or its
+// centre crosses the face at xi = c; stepping x by 2e-9 h across it changes the weights by <= 2e-9
+// (|dS/dxi| <= 1) and the gradients by <= 2e-9 / l / h (|d2S/dxi2| <= 1/l), plus round-off
+// ~ eps/l; the bounds below are these with a factor 2 to 5 of margin. Linear MPM: the weights are
+// continuous but the x-gradient of node c jumps by 2/h (from the right to the left hat slope,
+// times the y weight) as the centre crosses the face. That jump, felt by the internal force of
+// every particle entering a new cell, is the cell-crossing noise the paper attributes to linear
+// shape functions (its eq. 13); PMPM's block average removes it.
+void test_face_crossing(Lcg &r) {
+  const double step = 1e-9; // cell units, on each side of the face
+  for (int n = 0; n < 200; ++n) {
+    const int c = 3 + static_cast<int>(r.next() * 8);
+    double l[DIM] = {r.uniform(LMIN, 0.5) * H, r.uniform(LMIN, 0.5) * H};
+    if (n % 10 == 0) l[0] = 0.5 * H; // both block edges on faces at once
+    const double y = ORIGIN[1] + r.uniform(2.0, 12.0) * H;
+    const double li = l[0] / H;
+    // 0: left block edge on the face; 1: right edge; 2: centre on the face
+    const double centre[3] = {c + li, c - li, double(c)};
+    for (double xc : centre) {
+      const double xa[DIM] = {ORIGIN[0] + (xc - step) * H, y};
+      const double xb[DIM] = {ORIGIN[0] + (xc + step) * H, y};
+      double dw, dg;
+      node_jumps<UGIMPShape>(xa, xb, l, dw, dg);
+      CHECK_CLOSE(dw, 0.0, 5e-9);
+      CHECK_CLOSE(dg, 0.0, (5e-9 / li + 1e-13) / H);
+    }
+    {
+      const double xa[DIM] = {ORIGIN[0] + (c - step) * H, y};
+      const double xb[DIM] = {ORIGIN[0] + (c + step) * H, y};
+      double dw, dg;
+      node_jumps<LinearShape>(xa, xb, l, dw, dg);
+      CHECK_CLOSE(dw, 0.0, 5e-9); // linear weights are continuous ...
+      // ... their x-gradients jump: node c's slope goes from +1/h to -1/h, times its y weight,
+      // which is >= 1/2 for the nearer row of nodes
+      CHECK(dg > 0.99 / H);
+    }
+  }
+}
+
+} // namespace
+
+int main() {
+  Lcg r;
+  test_basic_properties<LinearShape>(r);
+  test_basic_properties<UGIMPShape>(r);
+  test_pmpm_equals_linear_inside_cell(r);
+  test_pmpm_weight_is_block_average(r);
+  test_pmpm_gradient_is_derivative(r);
+  test_face_crossing(r);
+  return pmpm_test::report("test_shapes");
+}
