@@ -226,6 +226,8 @@ PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio) {
   double mx = st.max_unbalanced, sm[2] = {st.sum_ext, st.n_ext};
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mx, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, 2, MPI_DOUBLE, MPI_SUM, sim.comm));
+  PetscCheck(sm[1] > 0, sim.comm, PETSC_ERR_ARG_WRONGSTATE,
+             "no node carries an external load: the residual ratio is undefined");
   *ratio = mx / (sm[0] / sm[1]);
   PetscFunctionReturn(0);
 }

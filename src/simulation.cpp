@@ -280,6 +280,12 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(ParticlesCreate(sim.grid, sim.parts));
   std::vector<ParticleInit> init;
   PetscCall(sim.scene->generate(sim, init));
+  // The PMPM support spans at most two cells per direction: 0 < l <= h/2.
+  for (const auto &q : init)
+    for (int d = 0; d < DIM; ++d)
+      PetscCheck(q.lp[d] > 0 && q.lp[d] <= 0.5 * sim.set.h * (1 + 1e-12), PETSC_COMM_SELF,
+                 PETSC_ERR_PLIB, "particle %" PetscInt_FMT " half-size %g outside (0, h/2]", q.pid,
+                 q.lp[d]);
   PetscCall(ParticlesAdd(sim.parts, init));
   PetscCall(SimulationIndexParticles(sim));
   PetscInt n;

@@ -103,6 +103,7 @@ void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) 
         st.sum_ext += std::sqrt(fext2);
         st.n_ext += 1.0;
       }
+      double f2 = 0.0; // |f_int + f_ext|^2 over the free dofs
       for (int d = 0; d < DIM; ++d) {
         double v = node[GridDof::P + d] / m;
         double f = node[GridDof::F + d];
@@ -111,7 +112,7 @@ void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) 
           node[GridDof::F + d] = 0.0;
           continue;
         }
-        st.max_unbalanced = std::fmax(st.max_unbalanced, std::fabs(f));
+        f2 += f * f;
         if (alpha > 0.0 && v != 0.0) f -= alpha * std::fabs(f) * (v > 0.0 ? 1.0 : -1.0);
         const double a = f / m;
         v += dt * a;
@@ -119,6 +120,7 @@ void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) 
         node[GridDof::F + d] = a;
         st.kinetic += 0.5 * m * v * v;
       }
+      st.max_unbalanced = std::fmax(st.max_unbalanced, std::sqrt(f2));
     }
   }
 }

@@ -44,7 +44,7 @@ struct GridUpdateParams {
 };
 
 struct GridStats {
-  double max_unbalanced = 0; // max |f_int + f_ext| over free nodal dofs with mass
+  double max_unbalanced = 0; // max over nodes with mass of |f_int + f_ext| (free dofs only)
   double sum_ext = 0;        // sum of |f_ext| over nodes with a load
   double n_ext = 0;          // number of those nodes
   double kinetic = 0;        // nodal kinetic energy 1/2 m v^2 after the update
@@ -74,7 +74,8 @@ void held_dofs(PetscInt i, PetscInt j, const PetscInt ncell[DIM], const FaceBC f
                bool held[DIM]);
 
 // Particle velocity from the nodal acceleration (FLIP, eq. 4) blended with the nodal velocity.
-// G1 (may be null): the interface body's nodal field, read by particles with colour 1.
+// G1 (may be null): the interface body's nodal field, read by particles with colour 1; it must
+// share G's geometry (origin, h, ghost layout), as the interface grid does by construction.
 template <class Shape>
 void g2p_velocity(const ParticleView &P, const GridView &G, const GridView *G1,
                   const G2PParams &prm);

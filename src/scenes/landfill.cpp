@@ -31,17 +31,31 @@ class LandfillScene final : public Scene {
   // geometry (m)
   double W_ = 0.030, Hw_ = 0.030, t_ = 0.001, Hs_ = 0.008, D_ = 0.006, Xc_ = 0.015;
   PetscInt layers_ = 0;
-  std::vector<ProfilePoint> prof_; // rank 0: membrane mid-surface profile
+  std::vector<ProfilePoint> prof_;        // rank 0: membrane mid-surface profile
+  double slip_top_ = 0, slip_bottom_ = 0; // rank 0: max relative x displacement at the faces
 
   // Gather the membrane particles to rank 0 and reduce them to a mid-surface profile.
   PetscErrorCode BuildProfile(Simulation &sim) {
     ParticleView P;
     PetscFunctionBeginUser;
-    constexpr int NF = 8; // x0 y0 x y strain_particle stress_axial, volume0, spare
+    constexpr int NF = 8; // x0 y0 x y strain_particle stress_axial volume0 kind
     std::vector<double> mine;
+    const double dx = sim.set.h / sim.set.ppc, ytop = Hw_ + t_, ybot = Hw_;
     PetscCall(ParticlesGetView(sim.parts, P));
     for (PetscInt p = 0; p < P.n; ++p) {
-      if (P.mat[p] != MEMBRANE) continue;
+      // the particle rows just above and below the membrane, for the interface slip
+      const double y0 = P.x0[p * DIM + 1];
+      if (P.mat[p] != MEMBRANE) {
+        const double kind = (y0 > ytop && y0 < ytop + dx)   ? 1
+                            : (y0 < ybot && y0 > ybot - dx) ? 2
+                                                            : 0;
+        if (kind > 0) {
+          const double row[NF] = {P.x0[p * DIM], y0,  P.x[p * DIM], P.x[p * DIM + 1], 0, 0,
+                                  P.vol0[p],     kind};
+          mine.insert(mine.end(), row, row + NF);
+        }
+        continue;
+      }
       const double *F = P.F + p * DIM * DIM, *s = P.stress + p * NSTRESS;
       // axial direction: the initial x axis, carried by F
       const double ax = F[0], ay = F[2], lam = std::hypot(ax, ay);
@@ -69,9 +83,32 @@ class LandfillScene final : public Scene {
     if (sim.rank != 0) PetscFunctionReturn(0);
     // Columns of membrane particles share x0; the volume-weighted column average is the
     // mid-surface point (the layers are symmetric about the mid-plane).
-    std::map<long, std::vector<const double *>> cols;
-    const double dx = sim.set.h / sim.set.ppc;
-    for (int k = 0; k < total; k += NF) cols[std::lround(all[k] / (0.5 * dx))].push_back(&all[k]);
+    std::map<long, std::vector<const double *>> cols, above, below;
+    for (int k = 0; k < total; k += NF) {
+      const long key = std::lround(all[k] / (0.5 * dx));
+      (all[k + 7] == 0 ? cols : all[k + 7] == 1 ? above : below)[key].push_back(&all[k]);
+    }
+    // Slip: tangential (x) displacement of the membrane's outer particle rows relative to the
+    // neighbouring rows of soil (top) and waste (bottom), per column.
+    auto ux_mean = [](const std::vector<const double *> &v) {
+      double s = 0;
+      for (const double *r : v) s += r[2] - r[0];
+      return v.empty() ? 0.0 : s / v.size();
+    };
+    slip_top_ = slip_bottom_ = 0;
+    for (auto &c : cols) {
+      double ymin = 1e300, ymax = -1e300;
+      for (const double *r : c.second) ymin = std::fmin(ymin, r[1]), ymax = std::fmax(ymax, r[1]);
+      std::vector<const double *> top, bot;
+      for (const double *r : c.second) {
+        if (r[1] > ymax - 1e-9) top.push_back(r);
+        if (r[1] < ymin + 1e-9) bot.push_back(r);
+      }
+      if (above.count(c.first))
+        slip_top_ = std::fmax(slip_top_, std::fabs(ux_mean(top) - ux_mean(above[c.first])));
+      if (below.count(c.first))
+        slip_bottom_ = std::fmax(slip_bottom_, std::fabs(ux_mean(bot) - ux_mean(below[c.first])));
+    }
     for (auto &c : cols) {
       ProfilePoint q{};
       double wsum = 0;
@@ -250,8 +287,10 @@ public:
            json_kv("min_axial_strain", prof_[kmin].strain_chain) + sep +
            json_kv("peak_axial_stress", prof_[smax].stress_axial) + sep +
            json_kv("peak_axial_stress_x", prof_[smax].x0) + sep +
-           json_kv("membrane_layers", double(layers_)) + sep + "\"giroud\": {\"paper\": " + paper +
-           ", \"self_consistent\": " + selfc + "}";
+           json_kv("membrane_layers", double(layers_)) + sep + json_kv("max_slip_top", slip_top_) +
+           sep + json_kv("max_slip_bottom", slip_bottom_) + sep + "\"interface\": \"" +
+           InterfaceTypeNames[(int)sim.iface.type] + "\"" + sep +
+           "\"giroud\": {\"paper\": " + paper + ", \"self_consistent\": " + selfc + "}";
     PetscFunctionReturn(0);
   }
 
