@@ -79,17 +79,22 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   if (iface) PetscCall(GridGetLocal(gb, false, Gb));
   const GridView *G1 = iface ? &Gb : nullptr;
 
-  // 5. Grid to particles: velocity (eq. 4). Under MUSL the updated particle momenta are mapped
-  //    back to the grid and the nodal velocity is recomputed before the kinematics.
+  // 5. Grid to particles: velocity (eq. 4), position (eq. 5), velocity gradient (eq. 20), F,
+  //    volume. USL reads one nodal field in one pass; MUSL first maps the updated particle
+  //    momenta back to the grid and takes the kinematics from that remapped velocity.
   PetscCall(PetscLogEventBegin(ev_g2p, 0, 0, 0, 0));
   G2PParams pp;
   pp.dt = dt;
   pp.pic = sim.set.pic;
   PetscCall(GridGetLocal(g, false, G));
-  g2p_velocity<Shape>(P, G, G1, pp);
-  PetscCall(GridRestoreLocal(g, G));
-  PetscCall(PetscLogEventEnd(ev_g2p, 0, 0, 0, 0));
-  if (sim.set.musl) {
+  if (!sim.set.musl) {
+    g2p<Shape>(P, G, G1, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);
+    PetscCall(GridRestoreLocal(g, G));
+    PetscCall(PetscLogEventEnd(ev_g2p, 0, 0, 0, 0));
+  } else {
+    g2p_velocity<Shape>(P, G, G1, pp);
+    PetscCall(GridRestoreLocal(g, G));
+    PetscCall(PetscLogEventEnd(ev_g2p, 0, 0, 0, 0));
     PetscCall(PetscLogEventBegin(ev_musl, 0, 0, 0, 0));
     PetscCall(GridGetLocal(g, true, G));
     p2g_momentum<Shape>(P, G);
@@ -99,18 +104,14 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     grid_velocity(G, sim.face);
     PetscCall(GridRestoreGlobal(g, G));
     PetscCall(GridGlobalToLocal(g));
+    PetscCall(GridGetLocal(g, false, G));
+    g2p_kinematics<Shape>(P, G, G1, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);
+    PetscCall(GridRestoreLocal(g, G));
     PetscCall(PetscLogEventEnd(ev_musl, 0, 0, 0, 0));
   }
-
-  // 6. Particle kinematics: position, velocity gradient, F, volume (eq. 5, 20).
-  PetscCall(PetscLogEventBegin(ev_g2p, 0, 0, 0, 0));
-  PetscCall(GridGetLocal(g, false, G));
-  g2p_kinematics<Shape>(P, G, G1, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);
-  PetscCall(GridRestoreLocal(g, G));
   if (iface) PetscCall(GridRestoreLocal(gb, Gb));
-  PetscCall(PetscLogEventEnd(ev_g2p, 0, 0, 0, 0));
 
-  // 7. Stress update, one batch per material (eq. 6).
+  // 6. Stress update, one batch per material (eq. 6).
   PetscCall(PetscLogEventBegin(ev_stress, 0, 0, 0, 0));
   for (size_t m = 0; m < sim.mats.size(); ++m) {
     StressBatch b;
@@ -157,26 +158,28 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &re
     break;
   }
 
-  // 8. Reductions: unbalanced force, loads, energy, wave speed, escapes (two allreduces).
-  double mx[3] = {rep.grid.max_unbalanced, rep.g2p.max_speed,
+  // 7. Reductions: unbalanced force, loads, energy, wave speed, escapes (two allreduces).
+  double mx[4] = {rep.grid.max_unbalanced, rep.g2p.max_c, rep.g2p.max_v,
                   static_cast<double>(rep.g2p.bad > 0 ? sim.rank + 1 : 0)};
   double sm[6] = {rep.grid.sum_ext,        rep.grid.n_ext,
                   rep.g2p.kinetic,         static_cast<double>(rep.g2p.left_rank),
                   rep.iface.contact_nodes, rep.iface.slip_nodes};
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPI_DOUBLE, MPI_MAX, sim.comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 4, MPI_DOUBLE, MPI_MAX, sim.comm));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, 6, MPI_DOUBLE, MPI_SUM, sim.comm));
   rep.iface.contact_nodes = sm[4];
   rep.iface.slip_nodes = sm[5];
   sim.iface_stats = rep.iface;
   rep.grid.max_unbalanced = mx[0];
-  rep.g2p.max_speed = mx[1];
+  rep.g2p.max_c = mx[1];
+  rep.g2p.max_v = mx[2];
+  rep.g2p.max_speed = mx[1] + mx[2];
   rep.grid.sum_ext = sm[0];
   rep.grid.n_ext = sm[1];
   rep.g2p.kinetic = sm[2];
 
   // A particle off the grid, with J <= 0, or non-finite: stop with where, when and what to do.
-  if (mx[2] > 0) {
-    const int who = static_cast<int>(mx[2]) - 1;
+  if (mx[3] > 0) {
+    const int who = static_cast<int>(mx[3]) - 1;
     double info[3] = {static_cast<double>(rep.g2p.bad_pid), rep.g2p.bad_x[0], rep.g2p.bad_x[1]};
     PetscCallMPI(MPI_Bcast(info, 3, MPI_DOUBLE, who, sim.comm));
     char what[96] = "";
@@ -189,7 +192,7 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &re
             sim.run.step, what, info[0], info[1], info[2], sim.set.cfl);
   }
 
-  // 9. Migrate only when a particle left its rank's cells.
+  // 8. Migrate only when a particle left its rank's cells.
   if (sm[3] > 0) {
     PetscCall(PetscLogEventBegin(ev_migrate, 0, 0, 0, 0));
     PetscCall(ParticlesMigrate(sim.parts));

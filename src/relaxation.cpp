@@ -4,6 +4,7 @@
 #include "pmpm/cycle.hpp"
 #include "pmpm/output.hpp"
 #include <cmath>
+#include <cstdio>
 
 namespace pmpm {
 
@@ -15,6 +16,94 @@ PetscErrorCode ZeroParticleVelocities(Simulation &sim) {
   PetscCall(ParticlesGetView(sim.parts, P));
   for (PetscInt q = 0; q < P.n * DIM; ++q) P.v[q] = 0.0;
   PetscCall(ParticlesRestoreView(sim.parts, P));
+  PetscFunctionReturn(0);
+}
+
+// Energy balance, the instability test that does not wait for a particle to invert. Damping,
+// plasticity, friction and kinetic resets only remove energy, so at every step
+//   E_kin + U_el <= E_kin(0) + W_ext,   W_ext = sum over steps of dt sum_p f_p . v_p,
+// with f_p the particle's load (ramped weight and traction) and U_el the elastic energy of the
+// current stresses (small-strain compliance of each material). A step above the stable limit
+// creates energy: the unstable mode grows by a constant factor per step (1.5-2x measured on the
+// column at -cfl 0.65-0.75) and passes the budget a few steps after it becomes visible, whereas
+// with local damping the step size then shrinks with the speeds and the run can "converge" to a
+// tangled state (column -cfl 0.75: stress error 31x). The factor 2 covers the small-strain
+// estimate of U_el at large strain (30 % over at 30 % compression for neo-Hookean) and the
+// half-step offset of v and x in undamped runs; the floor (the elastic energy of a strain of
+// about 1e-7) keeps round-off in unloaded bodies from tripping it. Checked every kEnergyEvery
+// steps (one allreduce of two numbers); the power is summed locally every step.
+constexpr PetscInt kEnergyEvery = 5;
+constexpr double kEnergyFactor = 2.0;
+struct EnergyBudget {
+  double e0 = 0;      // kinetic energy before the first step (scenes may start with a velocity)
+  double w_local = 0; // this rank's part of W_ext
+  double floor = 0;   // 1e-14 sum_p M_p V_p
+};
+
+// sum_p f_p . v_p over this rank's particles (the load's power after the step).
+double LoadPower(const ParticleView &P, const Load &load) {
+  double pw = 0;
+  for (PetscInt p = 0; p < P.n; ++p) {
+    const double *v = P.v + p * DIM, *t = P.traction + p * DIM;
+    for (int d = 0; d < DIM; ++d) pw += (P.weight[p] * load.gdir[d] + t[d]) * v[d];
+  }
+  return load.factor * pw;
+}
+
+// Elastic energy of this rank's particles: V sigma : C^-1 : sigma / 2 (plane strain, sigma_zz
+// kept), each material with its own E and nu.
+double ElasticEnergy(const Simulation &sim, const ParticleView &P) {
+  double u = 0;
+  for (PetscInt p = 0; p < P.n; ++p) {
+    const ElasticConstants &c = sim.mats[P.mat[p]].el;
+    const double *s = P.stress + p * NSTRESS;
+    const double sq = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
+    const double cross = s[0] * s[1] + s[1] * s[2] + s[2] * s[0];
+    u += P.vol[p] * ((sq - 2 * c.nu * cross) + 2 * (1 + c.nu) * s[3] * s[3]) / (2 * c.E);
+  }
+  return u;
+}
+
+PetscErrorCode EnergyBudgetInit(Simulation &sim, EnergyBudget &eb) {
+  ParticleView P;
+  double s[2] = {0, 0};
+  PetscFunctionBeginUser;
+  PetscCall(ParticlesGetView(sim.parts, P));
+  for (PetscInt p = 0; p < P.n; ++p) {
+    const double *v = P.v + p * DIM;
+    s[0] += 0.5 * P.mass[p] * (v[0] * v[0] + v[1] * v[1]);
+    s[1] += sim.wave_modulus[P.mat[p]] * P.vol[p];
+  }
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 2, MPI_DOUBLE, MPI_SUM, sim.comm));
+  eb = EnergyBudget{};
+  eb.e0 = s[0];
+  eb.floor = 1e-14 * s[1];
+  PetscFunctionReturn(0);
+}
+
+// The fastest particle (where an unstable mode lives): id, position and speed on every rank.
+PetscErrorCode FastestParticle(Simulation &sim, double info[4]) {
+  ParticleView P;
+  struct {
+    double v;
+    int rank;
+  } loc = {-1.0, sim.rank}, glob;
+  PetscFunctionBeginUser;
+  PetscCall(ParticlesGetView(sim.parts, P));
+  for (PetscInt p = 0; p < P.n; ++p) {
+    const double *v = P.v + p * DIM, sp = std::hypot(v[0], v[1]);
+    if (sp > loc.v || !std::isfinite(sp)) {
+      loc.v = std::isfinite(sp) ? sp : 1e300;
+      info[0] = static_cast<double>(P.pid[p]);
+      info[1] = P.x[p * DIM];
+      info[2] = P.x[p * DIM + 1];
+      info[3] = sp;
+    }
+  }
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
+  PetscCallMPI(MPI_Bcast(info, 4, MPI_DOUBLE, glob.rank, sim.comm));
   PetscFunctionReturn(0);
 }
 
@@ -46,6 +135,9 @@ PetscErrorCode Relax(Simulation &sim) {
   double t_last = t_start, log_ratio_last = 0;
   PetscInt step_last = 0;
   double ke_window = -1; // kinetic energy 100 steps ago, for the growth test
+  EnergyBudget budget;
+  PetscCall(EnergyBudgetInit(sim, budget));
+  char why_buf[384];
   if (!s.quiet)
     PetscCall(PetscPrintf(sim.comm,
                           "pmpm %s: %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g m, "
@@ -56,6 +148,12 @@ PetscErrorCode Relax(Simulation &sim) {
   for (run.step = 1; run.step <= s.max_steps; ++run.step) {
     load.factor = s.ramp_steps > 0 ? std::fmin(1.0, double(run.step) / s.ramp_steps) : 1.0;
     PetscCall(Step(sim, load, run.dt, rep));
+    {
+      ParticleView P; // the work of this step's loads (before a scene changes them in monitor)
+      PetscCall(ParticlesGetView(sim.parts, P));
+      budget.w_local += run.dt * LoadPower(P, load);
+      PetscCall(ParticlesRestoreView(sim.parts, P));
+    }
     run.time += run.dt;
     PetscCall(sim.scene->monitor(sim));
     run.kinetic = rep.g2p.kinetic;
@@ -66,7 +164,7 @@ PetscErrorCode Relax(Simulation &sim) {
     // Instability: a non-finite ratio or step, particle speeds beyond the wave speed (an
     // explicit step above the stable limit grows exponentially), or sustained energy growth.
     const bool ramped = run.step >= s.ramp_steps;
-    const double vmax = rep.g2p.max_speed - c0;
+    const double vmax = rep.g2p.max_v;
     const char *why = nullptr;
     if (!std::isfinite(run.ratio) || !std::isfinite(rep.g2p.max_speed))
       why = "non-finite nodal force or wave speed";
@@ -76,6 +174,24 @@ PetscErrorCode Relax(Simulation &sim) {
       if (ke_window > 0 && run.kinetic > 1e8 * ke_window && !s.dynamic)
         why = "kinetic energy grew 1e8-fold in 100 steps after the load ramp";
       ke_window = run.kinetic;
+    }
+    if (!why && run.step % kEnergyEvery == 0) {
+      ParticleView P;
+      PetscCall(ParticlesGetView(sim.parts, P));
+      double e[2] = {ElasticEnergy(sim, P), budget.w_local};
+      PetscCall(ParticlesRestoreView(sim.parts, P));
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, e, 2, MPI_DOUBLE, MPI_SUM, sim.comm));
+      const double held = run.kinetic + e[0], allowed = budget.e0 + e[1];
+      if (!(held <= kEnergyFactor * allowed + budget.floor)) {
+        double at[4] = {-1, 0, 0, 0};
+        PetscCall(FastestParticle(sim, at));
+        snprintf(why_buf, sizeof(why_buf),
+                 "kinetic + elastic energy %.3g J/m exceeds %g x (initial kinetic energy + work "
+                 "of the loads) = %g x %.3g J/m, energy created by the time integration; fastest "
+                 "particle %.0f at x = (%g, %g) m, |v| = %.3g m/s",
+                 held, kEnergyFactor, kEnergyFactor, allowed, at[0], at[1], at[2], at[3]);
+        why = why_buf;
+      }
     }
     PetscCheck(!why, sim.comm, PETSC_ERR_NOT_CONVERGED,
                "Instability at step %" PetscInt_FMT " (t = %g s, dt = %g s): %s. Reduce -cfl "

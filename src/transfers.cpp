@@ -16,32 +16,65 @@ void held_dofs(PetscInt i, PetscInt j, const PetscInt ncell[DIM], const FaceBC f
   }
 }
 
+namespace {
+// The 1D factors of one particle's tensor-product weights, physical gradients (per metre), and
+// a pointer to its first stencil node; node (a, b) is at node0 + b * row + a * NDOF.
+template <class Shape> struct Stencil {
+  static constexpr int NS = Shape::NS;
+  double wx[NS], dwx[NS], wy[NS], dwy[NS];
+  int nx, ny; // nodes actually touched per direction (the rest have zero weight and gradient)
+  double *node0;
+};
+template <class Shape>
+inline void stencil(const GridView &G, const double *x, const double *l, Stencil<Shape> &S) {
+  constexpr int NS = Shape::NS;
+  const double invh = 1.0 / G.h;
+  int base[DIM];
+  Shape::eval1d((x[0] - G.origin[0]) * invh, l[0] * invh, base[0], S.wx, S.dwx);
+  Shape::eval1d((x[1] - G.origin[1]) * invh, l[1] * invh, base[1], S.wy, S.dwy);
+  S.nx = S.ny = NS;
+  if (NS == 3) { // a uGIMP block inside one cell touches two nodes only
+    if (S.wx[NS - 1] == 0.0 && S.dwx[NS - 1] == 0.0) S.nx = 2;
+    if (S.wy[NS - 1] == 0.0 && S.dwy[NS - 1] == 0.0) S.ny = 2;
+  }
+  for (int a = 0; a < NS; ++a) {
+    S.dwx[a] *= invh;
+    S.dwy[a] *= invh;
+  }
+  S.node0 = G.node(base[0], base[1]);
+}
+} // namespace
+
 template <class Shape>
 void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
          PetscInt nidx) {
-  constexpr int NS = Shape::NS;
-  Weights<Shape> W;
+  constexpr int NS = Shape::NS, ND = GridDof::NDOF;
+  const PetscInt row = G.gm[0] * ND;
+  Stencil<Shape> S;
   const PetscInt n = idx ? nidx : P.n;
   for (PetscInt k = 0; k < n; ++k) {
     const PetscInt p = idx ? idx[k] : k;
-    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, G.origin, G.h, W);
+    stencil<Shape>(G, P.x + p * DIM, P.lp + p * DIM, S);
     const double m = P.mass[p], V = P.vol[p];
-    const double *v = P.v + p * DIM, *s = P.stress + p * NSTRESS;
-    const double fb[DIM] = {load.factor * P.weight[p] * load.gdir[0],
-                            load.factor * P.weight[p] * load.gdir[1]};
-    for (int b = 0; b < NS; ++b) {
-      for (int a = 0; a < NS; ++a) {
-        const int q = b * NS + a;
-        const double w = W.w[q], gx = W.grad[q][0], gy = W.grad[q][1];
-        double *node = G.node(W.base[0] + a, W.base[1] + b);
+    const double mv0 = m * P.v[p * DIM], mv1 = m * P.v[p * DIM + 1];
+    const double *s = P.stress + p * NSTRESS;
+    // internal force -V sigma . grad S (eq. 9; with PMPM weights eq. 14)
+    const double sxx = V * s[0], syy = V * s[1], sxy = V * s[3];
+    const double fb0 = load.factor * P.weight[p] * load.gdir[0];
+    const double fb1 = load.factor * P.weight[p] * load.gdir[1];
+    for (int b = 0; b < S.ny; ++b) {
+      double *r = S.node0 + b * row;
+      const double wy = S.wy[b], dwy = S.dwy[b];
+      for (int a = 0; a < S.nx; ++a) {
+        double *node = r + a * ND;
+        const double w = S.wx[a] * wy, gx = S.dwx[a] * wy, gy = S.wx[a] * dwy;
         node[GridDof::M] += w * m;
-        node[GridDof::P + 0] += w * m * v[0];
-        node[GridDof::P + 1] += w * m * v[1];
-        // internal force -V sigma . grad S (eq. 9; with PMPM weights eq. 14)
-        node[GridDof::F + 0] += w * fb[0] - V * (s[0] * gx + s[3] * gy);
-        node[GridDof::F + 1] += w * fb[1] - V * (s[3] * gx + s[1] * gy);
-        node[GridDof::FEXT + 0] += w * fb[0];
-        node[GridDof::FEXT + 1] += w * fb[1];
+        node[GridDof::P + 0] += w * mv0;
+        node[GridDof::P + 1] += w * mv1;
+        node[GridDof::F + 0] += w * fb0 - (sxx * gx + sxy * gy);
+        node[GridDof::F + 1] += w * fb1 - (sxy * gx + syy * gy);
+        node[GridDof::FEXT + 0] += w * fb0;
+        node[GridDof::FEXT + 1] += w * fb1;
       }
     }
   }
@@ -125,29 +158,123 @@ void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) 
   }
 }
 
-template <class Shape>
-void g2p_velocity(const ParticleView &P, const GridView &G0, const GridView *G1,
-                  const G2PParams &prm) {
-  constexpr int NS = Shape::NS;
+namespace {
+enum class G2PMode { Fused, Velocity, Kinematics };
+
+// One particle loop for the three G2P variants: gather from the nodes (velocity, acceleration,
+// velocity gradient), then the FLIP/PIC velocity update and/or the kinematics.
+template <class Shape, G2PMode mode>
+void g2p_impl(const ParticleView &P, const GridView &G0, const GridView *G1, const Grid *grid,
+              const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats *st) {
+  constexpr int NS = Shape::NS, ND = GridDof::NDOF;
+  constexpr bool vel = mode != G2PMode::Kinematics, kin = mode != G2PMode::Velocity;
   const double dt = prm.dt, pic = prm.pic;
-  Weights<Shape> W;
+  const PetscInt row = G0.gm[0] * ND; // G1 shares G0's layout
+  const double hx = G0.origin[0] + G0.ncell[0] * G0.h, hy = G0.origin[1] + G0.ncell[1] * G0.h;
+  const double invh = 1.0 / G0.h;
+  double c2max = 0, v2max = 0;
+  Stencil<Shape> S;
   for (PetscInt p = 0; p < P.n; ++p) {
-    double *v = P.v + p * DIM;
+    double *x = P.x + p * DIM, *v = P.v + p * DIM;
     const GridView &G = (G1 && P.colour[p] > 0.5) ? *G1 : G0; // interface body field
-    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, G.origin, G.h, W);
-    double vg[DIM] = {0, 0}, ag[DIM] = {0, 0};
-    for (int b = 0; b < NS; ++b)
-      for (int a = 0; a < NS; ++a) {
-        const double *node = G.node(W.base[0] + a, W.base[1] + b);
-        const double w = W.w[b * NS + a];
-        for (int d = 0; d < DIM; ++d) {
-          vg[d] += w * node[GridDof::P + d];
-          ag[d] += w * node[GridDof::F + d];
+    stencil<Shape>(G, x, P.lp + p * DIM, S);
+    double vg0 = 0, vg1 = 0, ag0 = 0, ag1 = 0, L0 = 0, L1 = 0, L2 = 0, L3 = 0;
+    for (int b = 0; b < S.ny; ++b) {
+      const double *r = S.node0 + b * row;
+      const double wy = S.wy[b], dwy = S.dwy[b];
+      for (int a = 0; a < S.nx; ++a) {
+        const double *node = r + a * ND;
+        const double w = S.wx[a] * wy;
+        const double nv0 = node[GridDof::P], nv1 = node[GridDof::P + 1];
+        vg0 += w * nv0;
+        vg1 += w * nv1;
+        if (vel) {
+          ag0 += w * node[GridDof::F];
+          ag1 += w * node[GridDof::F + 1];
+        }
+        if (kin) { // velocity gradient, eq. 20 with PMPM weights
+          const double gx = S.dwx[a] * wy, gy = S.wx[a] * dwy;
+          L0 += nv0 * gx;
+          L1 += nv0 * gy;
+          L2 += nv1 * gx;
+          L3 += nv1 * gy;
         }
       }
-    // FLIP (eq. 4) with an optional PIC blend
-    for (int d = 0; d < DIM; ++d) v[d] = (1.0 - pic) * (v[d] + dt * ag[d]) + pic * vg[d];
+    }
+    if (vel) { // FLIP (eq. 4) with an optional PIC blend
+      v[0] = (1.0 - pic) * (v[0] + dt * ag0) + pic * vg0;
+      v[1] = (1.0 - pic) * (v[1] + dt * ag1) + pic * vg1;
+    }
+    if (!kin) continue;
+    x[0] += dt * vg0; // eq. 5
+    x[1] += dt * vg1;
+    double *du = dudx + p * DIM * DIM, *F = P.F + p * DIM * DIM;
+    du[0] = L0 * dt;
+    du[1] = L1 * dt;
+    du[2] = L2 * dt;
+    du[3] = L3 * dt;
+    // F <- (I + L dt) F
+    const double F0 = F[0], F1 = F[1], F2 = F[2], F3 = F[3];
+    F[0] = (1.0 + du[0]) * F0 + du[1] * F2;
+    F[1] = (1.0 + du[0]) * F1 + du[1] * F3;
+    F[2] = du[2] * F0 + (1.0 + du[3]) * F2;
+    F[3] = du[2] * F1 + (1.0 + du[3]) * F3;
+    const double J = F[0] * F[3] - F[1] * F[2];
+    P.vol[p] = J * P.vol0[p];
+    const double speed2 = v[0] * v[0] + v[1] * v[1];
+    st->kinetic += 0.5 * P.mass[p] * speed2;
+    // Instability and escape checks, reported by the caller with the particle's id. The centre
+    // must stay on the grid (the ghosted DMDA has room for the support beyond it).
+    const char *what = nullptr;
+    if (!(J > 0.0) || !std::isfinite(J))
+      what = "non-positive or non-finite volume ratio J";
+    else if (!std::isfinite(x[0] + x[1] + v[0] + v[1]))
+      what = "non-finite position or velocity";
+    else if (!(x[0] >= G0.origin[0] && x[0] < hx && x[1] >= G0.origin[1] && x[1] < hy))
+      what = "particle left the grid";
+    if (what) {
+      if (st->bad++ == 0) {
+        st->bad_pid = P.pid[p];
+        st->bad_x[0] = x[0];
+        st->bad_x[1] = x[1];
+        st->bad_what = what;
+      }
+      continue;
+    }
+    // squared wave speed and particle speed; their roots are taken once, after the loop
+    c2max = std::fmax(c2max, wave_modulus[P.mat[p]] * P.vol[p] / P.mass[p]);
+    v2max = std::fmax(v2max, speed2);
+    // on the grid, so the truncation is a floor
+    const PetscInt cell[DIM] = {static_cast<PetscInt>((x[0] - G0.origin[0]) * invh),
+                                static_cast<PetscInt>((x[1] - G0.origin[1]) * invh)};
+    if (!grid->owns_cell(cell)) ++st->left_rank;
   }
+  // max_p (c_p + |v_p|) <= max c + max |v|: slightly conservative, two roots per step; the
+  // caller reduces both maxima across ranks before adding them
+  if (kin) {
+    st->max_c = std::fmax(st->max_c, std::sqrt(c2max));
+    st->max_v = std::fmax(st->max_v, std::sqrt(v2max));
+    st->max_speed = st->max_c + st->max_v;
+  }
+}
+} // namespace
+
+template <class Shape>
+void g2p_velocity(const ParticleView &P, const GridView &G, const GridView *G1,
+                  const G2PParams &prm) {
+  g2p_impl<Shape, G2PMode::Velocity>(P, G, G1, nullptr, prm, nullptr, nullptr, nullptr);
+}
+
+template <class Shape>
+void g2p_kinematics(const ParticleView &P, const GridView &G, const GridView *G1, const Grid &grid,
+                    const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats &st) {
+  g2p_impl<Shape, G2PMode::Kinematics>(P, G, G1, &grid, prm, wave_modulus, dudx, &st);
+}
+
+template <class Shape>
+void g2p(const ParticleView &P, const GridView &G, const GridView *G1, const Grid &grid,
+         const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats &st) {
+  g2p_impl<Shape, G2PMode::Fused>(P, G, G1, &grid, prm, wave_modulus, dudx, &st);
 }
 
 template <class Shape> void p2g_momentum(const ParticleView &P, const GridView &G) {
@@ -179,74 +306,6 @@ void grid_velocity(const GridView &G, const FaceBC face[2 * DIM]) {
     }
 }
 
-template <class Shape>
-void g2p_kinematics(const ParticleView &P, const GridView &G0, const GridView *G1, const Grid &grid,
-                    const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats &st) {
-  const GridView &G = G0;
-  constexpr int NS = Shape::NS;
-  const double dt = prm.dt;
-  const double lo[DIM] = {G.origin[0], G.origin[1]};
-  const double hi[DIM] = {G.origin[0] + G.ncell[0] * G.h, G.origin[1] + G.ncell[1] * G.h};
-  Weights<Shape> W;
-  for (PetscInt p = 0; p < P.n; ++p) {
-    double *x = P.x + p * DIM, *v = P.v + p * DIM, *F = P.F + p * DIM * DIM;
-    const GridView &Gp = (G1 && P.colour[p] > 0.5) ? *G1 : G0; // interface body field
-    weights<Shape>(x, P.lp + p * DIM, G.origin, G.h, W);
-    double vg[DIM] = {0, 0}, L[DIM * DIM] = {0, 0, 0, 0};
-    for (int b = 0; b < NS; ++b) {
-      for (int a = 0; a < NS; ++a) {
-        const int k = b * NS + a;
-        const double *node = Gp.node(W.base[0] + a, W.base[1] + b);
-        const double w = W.w[k], gx = W.grad[k][0], gy = W.grad[k][1];
-        const double nvx = node[GridDof::P], nvy = node[GridDof::P + 1];
-        vg[0] += w * nvx;
-        vg[1] += w * nvy;
-        L[0] += nvx * gx; // velocity gradient, eq. 20 with PMPM weights
-        L[1] += nvx * gy;
-        L[2] += nvy * gx;
-        L[3] += nvy * gy;
-      }
-    }
-    for (int d = 0; d < DIM; ++d) x[d] += dt * vg[d]; // eq. 5
-    double *du = dudx + p * DIM * DIM;
-    for (int q = 0; q < DIM * DIM; ++q) du[q] = L[q] * dt;
-    // F <- (I + L dt) F
-    const double F0 = F[0], F1 = F[1], F2 = F[2], F3 = F[3];
-    F[0] = (1.0 + du[0]) * F0 + du[1] * F2;
-    F[1] = (1.0 + du[0]) * F1 + du[1] * F3;
-    F[2] = du[2] * F0 + (1.0 + du[3]) * F2;
-    F[3] = du[2] * F1 + (1.0 + du[3]) * F3;
-    const double J = F[0] * F[3] - F[1] * F[2];
-    P.vol[p] = J * P.vol0[p];
-    const double speed2 = v[0] * v[0] + v[1] * v[1];
-    st.kinetic += 0.5 * P.mass[p] * speed2;
-    const double c = std::sqrt(wave_modulus[P.mat[p]] * P.vol[p] / P.mass[p]);
-    st.max_speed = std::fmax(st.max_speed, c + std::sqrt(speed2));
-    // Instability and escape checks, reported by the caller with the particle's id.
-    const char *what = nullptr;
-    if (!(J > 0.0) || !std::isfinite(J))
-      what = "non-positive or non-finite volume ratio J";
-    else if (!std::isfinite(x[0] + x[1] + v[0] + v[1]))
-      what = "non-finite position or velocity";
-    // The centre must stay on the grid (the ghosted DMDA has room for the support beyond it).
-    for (int d = 0; d < DIM && !what; ++d)
-      if (!(x[d] >= lo[d] && x[d] < hi[d])) what = "particle left the grid";
-    if (what) {
-      if (st.bad++ == 0) {
-        st.bad_pid = P.pid[p];
-        st.bad_x[0] = x[0];
-        st.bad_x[1] = x[1];
-        st.bad_what = what;
-      }
-      continue;
-    }
-    PetscInt c_idx[DIM];
-    for (int d = 0; d < DIM; ++d)
-      c_idx[d] = static_cast<PetscInt>(std::floor((x[d] - G.origin[d]) / G.h));
-    if (!grid.owns_cell(c_idx)) ++st.left_rank;
-  }
-}
-
 #define PMPM_INSTANTIATE(S)                                                                        \
   template void p2g<S>(const ParticleView &, const Load &, const GridView &, const PetscInt *,     \
                        PetscInt);                                                                  \
@@ -255,6 +314,8 @@ void g2p_kinematics(const ParticleView &P, const GridView &G0, const GridView *G
   template void g2p_velocity<S>(const ParticleView &, const GridView &, const GridView *,          \
                                 const G2PParams &);                                                \
   template void p2g_momentum<S>(const ParticleView &, const GridView &);                           \
+  template void g2p<S>(const ParticleView &, const GridView &, const GridView *, const Grid &,     \
+                       const G2PParams &, const double *, double *, G2PStats &);                   \
   template void g2p_kinematics<S>(const ParticleView &, const GridView &, const GridView *,        \
                                   const Grid &, const G2PParams &, const double *, double *,       \
                                   G2PStats &);

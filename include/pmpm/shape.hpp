@@ -40,25 +40,30 @@ struct LinearShape {
 struct UGIMPShape {
   static constexpr int NS = 3;
   static constexpr const char *name = "pmpm";
-  // Integral of the hat centred at 0 (unit cell) from -inf to s.
-  static double hat_integral(double s) {
-    if (s <= -1.0) return 0.0;
-    if (s <= 0.0) return 0.5 * (1.0 + s) * (1.0 + s);
-    if (s <= 1.0) return 1.0 - 0.5 * (1.0 - s) * (1.0 - s);
-    return 1.0;
-  }
-  static double hat(double s) {
-    const double a = std::fabs(s);
-    return a < 1.0 ? 1.0 - a : 0.0;
-  }
+  // Closed form: with the block [a, b] in the coordinates of its first cell (0 <= a < 1,
+  // b = a + 2 li <= a + 1), integrate the three hats piecewise; one branch (b > 1).
   static void eval1d(double xi, double li, int &base, double w[NS], double dw[NS]) {
-    base = static_cast<int>(std::floor(xi - li));
-    const double inv = 0.5 / li;
-    for (int a = 0; a < NS; ++a) {
-      const double s = xi - (base + a);
-      w[a] = (hat_integral(s + li) - hat_integral(s - li)) * inv;
-      dw[a] = (hat(s + li) - hat(s - li)) * inv;
+    const double lo = xi - li;
+    base = static_cast<int>(std::floor(lo));
+    const double a = lo - base, b = a + 2.0 * li, inv = 0.5 / li;
+    const double c = b < 1.0 ? b : 1.0; // end of the block's part in the first cell
+    const double half = 0.5 * (c * c - a * a);
+    double I0 = (c - a) - half, I1 = half, I2 = 0.0;
+    double N0b = 1.0 - c, N1b = c, N2b = 0.0; // hats at the block's right end
+    if (b > 1.0) {
+      const double e = b - 1.0; // the part in the second cell
+      I1 += e - 0.5 * e * e;
+      I2 = 0.5 * e * e;
+      N0b = 0.0;
+      N1b = 1.0 - e;
+      N2b = e;
     }
+    w[0] = I0 * inv;
+    w[1] = I1 * inv;
+    w[2] = I2 * inv;
+    dw[0] = (N0b - (1.0 - a)) * inv;
+    dw[1] = (N1b - a) * inv;
+    dw[2] = N2b * inv;
   }
 };
 

@@ -60,14 +60,20 @@ struct G2PParams {
 };
 
 struct G2PStats {
-  double max_speed = 0;   // max over particles of c_p + |v_p| (for the next stable step)
-  double kinetic = 0;     // particle kinetic energy
-  PetscInt left_rank = 0; // particles now centred outside this rank's cells
-  PetscInt bad = 0;       // particles with J <= 0, a non-finite value, or off the grid
-  PetscInt bad_pid = -1;  // the first such particle
+  double max_c = 0, max_v = 0; // max_p c_p and max_p |v_p|
+  double max_speed = 0;        // max_c + max_v (bounds c_p + |v_p|; the next stable step)
+  double kinetic = 0;          // particle kinetic energy
+  PetscInt left_rank = 0;      // particles now centred outside this rank's cells
+  PetscInt bad = 0;            // particles with J <= 0, a non-finite value, or off the grid
+  PetscInt bad_pid = -1;       // the first such particle
   double bad_x[DIM] = {0, 0};
   const char *bad_what = "";
 };
+
+// USL in one pass: g2p_velocity and g2p_kinematics on the same nodal field.
+template <class Shape>
+void g2p(const ParticleView &P, const GridView &G, const GridView *G1, const Grid &grid,
+         const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats &stats);
 
 // Which nodal dofs a box face holds: a roller holds the normal one, fixed holds both.
 void held_dofs(PetscInt i, PetscInt j, const PetscInt ncell[DIM], const FaceBC face[2 * DIM],

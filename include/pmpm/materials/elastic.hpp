@@ -12,13 +12,21 @@ public:
   explicit LinearElastic(const ElasticConstants &c) : c_(c) {}
   const char *model() const override { return "linear_elastic"; }
   double wave_modulus() const override { return c_.M(); }
+  // Plane strain written out (the same algebra as jaumann_rotate + elastic_increment on 3x3
+  // tensors, without the temporaries): with spin w = (du/dy - dv/dx)/2,
+  //   sxx += 2 w sxy, syy -= 2 w sxy, sxy += w (syy - sxx), szz unchanged; then + C : de.
   void update_stress(const StressBatch &b) const override {
+    const double lam = c_.lambda(), G2 = 2.0 * c_.G();
     for (int k = 0; k < b.n; ++k) {
       const int p = b.idx[k];
-      Mat3 de, dw;
-      strain_and_spin(b.dudx + p * DIM * DIM, de, dw);
-      const Mat3 s = jaumann_rotate(stress_to_tensor(b.stress + p * NSTRESS), dw);
-      tensor_to_stress(s + elastic_increment(c_, de), b.stress + p * NSTRESS);
+      const double *g = b.dudx + p * DIM * DIM;
+      double *s = b.stress + p * NSTRESS;
+      const double exx = g[0], eyy = g[3], exy = 0.5 * (g[1] + g[2]), w = 0.5 * (g[1] - g[2]);
+      const double sxx = s[0], syy = s[1], sxy = s[3], ltr = lam * (exx + eyy);
+      s[0] = sxx + 2.0 * w * sxy + ltr + G2 * exx;
+      s[1] = syy - 2.0 * w * sxy + ltr + G2 * eyy;
+      s[2] += ltr;
+      s[3] = sxy + w * (syy - sxx) + G2 * exy;
     }
   }
 
