@@ -292,6 +292,8 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(ParticlesGlobalCount(sim.parts, &n));
   PetscCheck(n > 0, sim.comm, PETSC_ERR_USER_INPUT,
              "the scene produced no particles: check the geometry options against -cell_size");
+  // Step 0: monitor() also sees the initial state, where scenes may set an initial velocity field.
+  PetscCall(sim.scene->monitor(sim));
   PetscFunctionReturn(0);
 }
 

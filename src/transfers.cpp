@@ -48,7 +48,7 @@ inline void stencil(const GridView &G, const double *x, const double *l, Stencil
 template <class Shape>
 void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
          PetscInt nidx) {
-  constexpr int NS = Shape::NS, ND = GridDof::NDOF;
+  constexpr int ND = GridDof::NDOF;
   const PetscInt row = G.gm[0] * ND;
   Stencil<Shape> S;
   const PetscInt n = idx ? nidx : P.n;
@@ -166,7 +166,7 @@ enum class G2PMode { Fused, Velocity, Kinematics };
 template <class Shape, G2PMode mode>
 void g2p_impl(const ParticleView &P, const GridView &G0, const GridView *G1, const Grid *grid,
               const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats *st) {
-  constexpr int NS = Shape::NS, ND = GridDof::NDOF;
+  constexpr int ND = GridDof::NDOF;
   constexpr bool vel = mode != G2PMode::Kinematics, kin = mode != G2PMode::Velocity;
   const double dt = prm.dt, pic = prm.pic;
   const PetscInt row = G0.gm[0] * ND; // G1 shares G0's layout
