@@ -1,10 +1,33 @@
 #!/usr/bin/env bash
-# The main job: install and build if needed, then run a scene on 2 ranks (default: the landfill
-# cover under load II) and plot its results. Usage: scripts/run.sh [options-file] [pmpm options]
+# The main job: install and build if needed, then run the landfill cover of the seed paper under
+# load II and load I on 2 ranks, and plot the membrane's deflection, strain and stress (both loads
+# on one plot) and the deformed shape. Results: output/landfill/ and output/landfill_load1/.
+#
+# With arguments, runs one scene instead: scripts/run.sh OPTIONS_FILE [pmpm options...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-opts=${1:-options/column.opts}
-shift || true
-mpiexec -n 2 build/pmpm -options_file "$opts" "$@"
+NP=${PMPM_RANKS:-2}
+run() { mpiexec -n "$NP" --oversubscribe build/pmpm "$@"; }
+
+if (($#)); then
+  opts=$1
+  shift
+  run -options_file "$opts" "$@"
+  exit
+fi
+run -options_file options/landfill.opts -output_dir output/landfill
+run -options_file options/landfill_load1.opts -output_dir output/landfill_load1
+/usr/bin/python3 scripts/plot_landfill.py output/landfill --compare output/landfill_load1 \
+  --labels "load II" "load I"
+/usr/bin/python3 scripts/plot_landfill.py output/landfill_load1
+/usr/bin/python3 - <<'PY'
+import json
+for name in ("landfill", "landfill_load1"):
+    r = json.load(open(f"output/{name}/summary.json"))["results"]
+    print(f"{name:15s} settlement at X = 15 mm {r['settlement_centre']*1e3:.3f} mm, "
+          f"differential {r['differential_settlement']*1e3:.3f} mm, "
+          f"peak membrane strain {r['peak_axial_strain']*100:.2f} % at X = {r['peak_axial_strain_x']*1e3:.1f} mm")
+print("plots: output/landfill/*.png (ParaView: output/landfill/particles.xmf)")
+PY
