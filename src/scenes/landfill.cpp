@@ -256,11 +256,12 @@ public:
     const double centre = -uy_at(Xc_);
     const double wall = -0.5 * (uy_at(prof_.front().x0) + uy_at(prof_.back().x0));
     const double sag = centre + 0.5 * (uy_at(Xc_ - D_ / 2) + uy_at(Xc_ + D_ / 2));
-    size_t kmax = 0, kmin = 0, smax = 0;
+    size_t kmax = 0, kmin = 0, smax = 0, smin = 0;
     for (size_t k = 0; k < prof_.size(); ++k) {
       if (prof_[k].strain_chain > prof_[kmax].strain_chain) kmax = k;
       if (prof_[k].strain_chain < prof_[kmin].strain_chain) kmin = k;
-      if (std::fabs(prof_[k].stress_axial) > std::fabs(prof_[smax].stress_axial)) smax = k;
+      if (prof_[k].stress_axial > prof_[smax].stress_axial) smax = k;
+      if (prof_[k].stress_axial < prof_[smin].stress_axial) smin = k;
     }
     double pk_particle = -1e300;
     for (const auto &q : prof_) pk_particle = std::fmax(pk_particle, q.strain_particle);
@@ -287,6 +288,7 @@ public:
            json_kv("min_axial_strain", prof_[kmin].strain_chain) + sep +
            json_kv("peak_axial_stress", prof_[smax].stress_axial) + sep +
            json_kv("peak_axial_stress_x", prof_[smax].x0) + sep +
+           json_kv("min_axial_stress", prof_[smin].stress_axial) + sep +
            json_kv("membrane_layers", double(layers_)) + sep + json_kv("max_slip_top", slip_top_) +
            sep + json_kv("max_slip_bottom", slip_bottom_) + sep + "\"interface\": \"" +
            InterfaceTypeNames[(int)sim.iface.type] + "\"" + sep +
