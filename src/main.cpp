@@ -1,7 +1,7 @@
 static const char help[] =
     "pmpm: large-deformation quasi-static geomechanics with the partition Material Point Method.\n"
     "Usage: mpirun -n N pmpm -options_file options/<scene>.opts [-option value ...]\n"
-    "Scenes: bar, column, landfill. Every option is listed below with -help.\n\n";
+    "Scenes: bar, column, landfill, incline, layers, block. -help lists every option.\n\n";
 
 #include "pmpm/cycle.hpp"
 #include "pmpm/output.hpp"

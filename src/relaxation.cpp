@@ -193,10 +193,15 @@ PetscErrorCode Relax(Simulation &sim) {
         why = why_buf;
       }
     }
+    // Standard MPM's cell-crossing error also creates energy, whatever the step size.
+    const char *hint = s.shape == ShapeKind::Linear
+                           ? " With -shape mpm, particles crossing cell faces create energy too: "
+                             "-shape pmpm avoids that."
+                           : "";
     PetscCheck(!why, sim.comm, PETSC_ERR_NOT_CONVERGED,
                "Instability at step %" PetscInt_FMT " (t = %g s, dt = %g s): %s. Reduce -cfl "
-               "(now %g; 0.5 is safe for both shapes) or raise -damping_alpha.",
-               run.step, run.time, run.dt, why, s.cfl);
+               "(now %g; 0.5 is safe for both shapes) or raise -damping_alpha.%s",
+               run.step, run.time, run.dt, why, s.cfl, hint);
 
     if (kinetic && !s.dynamic) {
       if (run.kinetic < run.kinetic_prev) {

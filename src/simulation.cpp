@@ -17,11 +17,11 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscInt ng = DIM;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
-  PetscCall(PetscOptionsString("-scene", "Scene: bar, column, landfill, incline", nullptr, scene,
-                               scene, sizeof(scene), &set));
+  PetscCall(PetscOptionsString("-scene", "Scene: bar, column, landfill, incline, layers, block",
+                               nullptr, scene, scene, sizeof(scene), &set));
   PetscCheck(set, comm, PETSC_ERR_USER_INPUT,
              "No scene given: pass -options_file options/<scene>.opts or -scene NAME "
-             "(bar, column, landfill)");
+             "(bar, column, landfill, incline, layers, block)");
   s.scene = scene;
   PetscCall(PetscOptionsReal("-cell_size", "Cell size h (m), > 0", nullptr, s.h, &s.h, nullptr));
   PetscCall(PetscOptionsInt("-ppc", "Particles per cell per direction, 1..8", nullptr, s.ppc,
@@ -221,7 +221,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(SettingsFromOptions(sim.comm, sim.set));
   sim.scene = make_scene(sim.set.scene);
   PetscCheck(sim.scene, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-scene %s is unknown; allowed: bar, column, landfill, incline",
+             "-scene %s is unknown; allowed: bar, column, landfill, incline, layers, block",
              sim.set.scene.c_str());
   PetscCall(sim.scene->setup(sim));
   PetscCheck(!sim.mats.empty(), sim.comm, PETSC_ERR_PLIB, "scene defined no material");

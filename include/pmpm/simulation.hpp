@@ -62,7 +62,8 @@ public:
   virtual PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) = 0;
   // Scene-specific results, as "key": value pairs appended to the summary's results object.
   virtual PetscErrorCode results(Simulation &sim, std::string &json) = 0;
-  // Called after every step (rank-collective); for scenes that record a time history.
+  // Called once before the first step (step 0: a scene may set initial velocities there) and
+  // after every step (rank-collective); for scenes that record a time history.
   virtual PetscErrorCode monitor(Simulation &) { return 0; }
   // Extra files (profiles); called after results, rank-collective.
   virtual PetscErrorCode write_files(Simulation &) { return 0; }

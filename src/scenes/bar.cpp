@@ -1,6 +1,13 @@
 // The paper's Figure 2 bar: plane strain, x = 0 on rollers, y = 0 on rollers (the symmetry line
 // that pins u_y), traction t on the end x = L, no gravity. Static solution (REFERENCE.md 2.1):
 // sigma_xx = t, u_x = t (1 - nu^2) x / E, u_y = -nu (1 + nu) t y / E.
+//
+// Vibrating bar (REFERENCE.md 2.4), with -bar_initial_velocity v0 (and -bar_traction 0, nu = 0,
+// -bar_top_roller, -dynamic): fixed-free, v(x, 0) = v0 sin(beta x), beta = pi / (2L); exact
+// v = v0 cos(omega t) sin(beta x), omega = beta sqrt(E / rho), centre-of-mass velocity
+// (2 v0 / pi) cos(omega t), energy rho v0^2 L B / 4 constant. The period is measured from the
+// zero crossings of the centre-of-mass velocity; the energy is kinetic + elastic
+// (V sigma : C^-1 : sigma / 2) at every step.
 #include "pmpm/cycle.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
@@ -9,8 +16,12 @@
 namespace pmpm {
 
 class BarScene final : public Scene {
-  double L_ = 1.0, B_ = 0.25, t_ = 1e3, box_ = 0;
+  double L_ = 1.0, B_ = 0.25, t_ = 1e3, box_ = 0, v0_ = 0;
   PetscInt nL_ = 0;
+  PetscBool top_roller_ = PETSC_FALSE;
+  std::vector<double> hist_t_, hist_v_, hist_e_; // rank 0: time, centre-of-mass v_x, energy
+
+  double beta() const { return M_PI / (2 * L_); }
 
 public:
   PetscErrorCode setup(Simulation &sim) override {
@@ -22,6 +33,13 @@ public:
                                nullptr));
     PetscCall(PetscOptionsReal("-box_length", "Grid length in x (m), >= L + 2 cells; default 1.5 L",
                                nullptr, box_, &box_, nullptr));
+    PetscCall(PetscOptionsReal(
+        "-initial_velocity", "Vibrating bar: initial v_x = v0 sin(pi x / 2L) (m/s); 0: static bar",
+        nullptr, v0_, &v0_, nullptr));
+    PetscCall(PetscOptionsBool("-top_roller",
+                               "Roller on the bar's top face y = B (the grid ends there): with "
+                               "nu = 0 the bar is one-dimensional",
+                               nullptr, top_roller_, &top_roller_, nullptr));
     PetscOptionsEnd();
     PetscInt nB, nbox;
     PetscCall(CheckCells(sim.comm, "-bar_length", L_, sim.set.h, &nL_));
@@ -32,12 +50,17 @@ public:
                "-bar_box_length %g m leaves no room for the bar to stretch: the grid is too small "
                "for the particles (need >= L + 2 cells = %g m)",
                box_, (nL_ + 2) * sim.set.h);
-    PetscCheck(t_ != 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-bar_traction must be non-zero");
+    PetscCheck(
+        t_ != 0 || v0_ != 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+        "-bar_traction must be non-zero (or give -bar_initial_velocity for a vibrating bar)");
+    PetscCheck(v0_ == 0 || t_ == 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-bar_initial_velocity needs -bar_traction 0 (free vibration)");
     sim.origin[0] = sim.origin[1] = 0;
     sim.ncell[0] = nbox;
-    sim.ncell[1] = nB + 1;
+    sim.ncell[1] = top_roller_ ? nB : nB + 1;
     sim.face[XMIN] = FaceBC::Roller;
     sim.face[YMIN] = FaceBC::Roller;
+    if (top_roller_) sim.face[YMAX] = FaceBC::Roller;
     sim.mats.resize(1);
     PetscCall(MaterialFromOptions(sim.comm, "bar", sim.mats[0]));
     PetscFunctionReturn(0);
@@ -57,9 +80,81 @@ public:
     PetscFunctionReturn(0);
   }
 
+  PetscErrorCode monitor(Simulation &sim) override {
+    ParticleView P;
+    double s[3] = {0, 0, 0}; // mass, x-momentum, kinetic + elastic energy
+    PetscFunctionBeginUser;
+    if (v0_ == 0) PetscFunctionReturn(0);
+    const ElasticConstants &c = sim.mats[0].el;
+    PetscCall(ParticlesGetView(sim.parts, P));
+    for (PetscInt p = 0; p < P.n; ++p) {
+      double *v = P.v + p * DIM;
+      if (sim.run.step == 0) v[0] = v0_ * std::sin(beta() * P.x0[p * DIM]);
+      const double *q = P.stress + p * NSTRESS;
+      const double sq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+      const double cross = q[0] * q[1] + q[1] * q[2] + q[2] * q[0];
+      s[0] += P.mass[p];
+      s[1] += P.mass[p] * v[0];
+      s[2] += 0.5 * P.mass[p] * (v[0] * v[0] + v[1] * v[1]) +
+              P.vol[p] * (sq - 2 * c.nu * cross + 2 * (1 + c.nu) * q[3] * q[3]) / (2 * c.E);
+    }
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    PetscCall(SumAll(sim.comm, s, 3));
+    hist_t_.push_back(sim.run.time);
+    hist_v_.push_back(s[1] / s[0]);
+    hist_e_.push_back(s[2]);
+    PetscFunctionReturn(0);
+  }
+
+  // Period from the zero crossings of the centre-of-mass velocity; energy drift.
+  PetscErrorCode vibration_results(Simulation &sim, std::string &json) {
+    PetscFunctionBeginUser;
+    const MaterialEntry &m = sim.mats[0];
+    const double omega = beta() * std::sqrt(m.el.E / m.density), T_exact = 2 * M_PI / omega;
+    std::vector<double> tc; // crossing times (linear interpolation)
+    for (size_t k = 1; k < hist_v_.size(); ++k) {
+      const double a = hist_v_[k - 1], b = hist_v_[k];
+      if ((a > 0 && b <= 0) || (a < 0 && b >= 0))
+        tc.push_back(hist_t_[k - 1] + (hist_t_[k] - hist_t_[k - 1]) * a / (a - b));
+    }
+    const double T = tc.size() >= 2 ? 2 * (tc.back() - tc.front()) / double(tc.size() - 1) : 0;
+    // Energy: the whole-run range, and the drift of its mean over the first and the last
+    // measured period (the kinetic and elastic parts are half a step apart, so the sum
+    // oscillates by O(omega dt) within a period; its mean does not).
+    double e0 = hist_e_.empty() ? 0 : hist_e_.front(), emin = e0, emax = e0;
+    for (double e : hist_e_) emin = std::fmin(emin, e), emax = std::fmax(emax, e);
+    auto mean_over = [&](double t0, double t1) {
+      double s = 0, n = 0;
+      for (size_t k = 0; k < hist_t_.size(); ++k)
+        if (hist_t_[k] >= t0 && hist_t_[k] < t1) s += hist_e_[k], n += 1;
+      return n > 0 ? s / n : 0.0;
+    };
+    const double tend = hist_t_.empty() ? 0 : hist_t_.back();
+    const double Tm = T > 0 ? T : T_exact;
+    const double e_first = mean_over(0, Tm), e_last = mean_over(tend - Tm, tend + 1);
+    double vmax = 0;
+    for (double v : hist_v_) vmax = std::fmax(vmax, std::fabs(v));
+    const char *sep = ",\n    ";
+    json =
+        json_kv("initial_velocity", v0_) + sep + json_kv("omega_exact", omega) + sep +
+        json_kv("period", T) + sep + json_kv("period_exact", T_exact) + sep +
+        json_kv("period_error_rel", std::fabs(T - T_exact) / T_exact) + sep +
+        json_kv("zero_crossings", (double)tc.size()) + sep + json_kv("vcm_amplitude", vmax) + sep +
+        json_kv("vcm_amplitude_exact", 2 * v0_ / M_PI) + sep + json_kv("energy_initial", e0) + sep +
+        json_kv("energy_exact", m.density * v0_ * v0_ * L_ * B_ / 4) + sep +
+        json_kv("energy_final", hist_e_.empty() ? 0 : hist_e_.back()) + sep +
+        json_kv("energy_range_rel", (emax - emin) / e0) + sep +
+        json_kv("energy_drift_rel", (e_last - e_first) / e_first) + sep + json_kv("duration", tend);
+    PetscFunctionReturn(0);
+  }
+
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     ParticleView P;
     PetscFunctionBeginUser;
+    if (v0_ != 0) {
+      PetscCall(vibration_results(sim, json));
+      PetscFunctionReturn(0);
+    }
     const ElasticConstants &c = sim.mats[0].el;
     // [sum ux at tip, sum x0 at tip, count at tip]; and max stress error
     double s[3] = {0, 0, 0}, err = 0;

@@ -7,12 +7,16 @@ std::unique_ptr<Scene> make_bar_scene();
 std::unique_ptr<Scene> make_column_scene();
 std::unique_ptr<Scene> make_landfill_scene();
 std::unique_ptr<Scene> make_incline_scene();
+std::unique_ptr<Scene> make_layers_scene();
+std::unique_ptr<Scene> make_block_scene();
 
 std::unique_ptr<Scene> make_scene(const std::string &name) {
   if (name == "bar") return make_bar_scene();
   if (name == "column") return make_column_scene();
   if (name == "landfill") return make_landfill_scene();
   if (name == "incline") return make_incline_scene();
+  if (name == "layers") return make_layers_scene();
+  if (name == "block") return make_block_scene();
   return nullptr;
 }
 

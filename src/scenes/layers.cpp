@@ -1,0 +1,145 @@
+// Two bonded elastic layers under self-weight: a stiffness and unit-weight contrast test for the
+// relaxation. A column of width W: the bottom layer (material "bottom", 0 <= Y < Hb) under the
+// top layer (material "top", Hb <= Y < Hb + Ht); base fixed, sides on rollers, top free.
+// Uniaxial strain, so at initial height Y the Cauchy stress is exactly minus the weight above
+// (conserved under deformation):
+//   sigma_yy(Y) = -gamma_t (H - Y)                     Hb <= Y <= H = Hb + Ht
+//   sigma_yy(Y) = -gamma_t Ht - gamma_b (Hb - Y)        0 <= Y <= Hb
+// and each layer's law gives J(Y) (linear elastic, Jaumann rate: sigma = M ln J; neo-Hookean:
+// sigma = (lambda ln J + mu (J^2 - 1)) / J), u_y(Y) = int_0^Y (J - 1) dY, piecewise per layer
+// (REFERENCE.md 2.2 for one layer). Small strain: u_y = int sigma / M.
+#include "pmpm/output.hpp"
+#include "pmpm/scene_util.hpp"
+#include <cmath>
+#include <cstring>
+
+namespace pmpm {
+
+class LayersScene final : public Scene {
+  double Hb_ = 0.5, Ht_ = 0.5, W_ = 0;
+
+  static double J_of_stress(const MaterialEntry &m, double sig) {
+    const ElasticConstants &c = m.el;
+    double J = std::exp(sig / c.M());
+    if (std::strcmp(m.model->model(), "neo_hookean") != 0) return J;
+    for (int it = 0; it < 60; ++it) { // Newton on g(J) = lambda ln J + mu (J^2 - 1) - sig J
+      const double g = c.lambda() * std::log(J) + c.G() * (J * J - 1) - sig * J;
+      const double dg = c.lambda() / J + 2 * c.G() * J - sig;
+      const double step = g / dg;
+      J -= step;
+      if (std::fabs(step) < 1e-15 * J) break;
+    }
+    return J;
+  }
+  double stress_exact(const Simulation &sim, double Y) const {
+    const double gb = sim.mats[0].gamma, gt = sim.mats[1].gamma, H = Hb_ + Ht_;
+    return Y >= Hb_ ? -gt * (H - Y) : -gt * Ht_ - gb * (Hb_ - Y);
+  }
+  // int_a^b (J(sigma(Y)) - 1) dY inside one layer (Simpson, 400 intervals).
+  double integrate(const Simulation &sim, const MaterialEntry &m, double a, double b) const {
+    const int n = 400;
+    const double dY = (b - a) / n;
+    double s = 0;
+    for (int k = 0; k <= n; ++k) {
+      const double w = (k == 0 || k == n) ? 1 : (k % 2 ? 4 : 2);
+      s += w * (J_of_stress(m, stress_exact(sim, a + k * dY)) - 1.0);
+    }
+    return s * dY / 3.0;
+  }
+  double u_exact(const Simulation &sim, double Y) const {
+    if (Y <= Hb_) return integrate(sim, sim.mats[0], 0.0, Y);
+    return integrate(sim, sim.mats[0], 0.0, Hb_) + integrate(sim, sim.mats[1], Hb_, Y);
+  }
+
+public:
+  PetscErrorCode setup(Simulation &sim) override {
+    PetscFunctionBeginUser;
+    PetscOptionsBegin(sim.comm, "layers_", "Two bonded layers under self-weight", nullptr);
+    PetscCall(PetscOptionsReal("-bottom_height", "Bottom layer height Hb (m)", nullptr, Hb_, &Hb_,
+                               nullptr));
+    PetscCall(
+        PetscOptionsReal("-top_height", "Top layer height Ht (m)", nullptr, Ht_, &Ht_, nullptr));
+    PetscCall(
+        PetscOptionsReal("-width", "Column width (m); default 4 cells", nullptr, W_, &W_, nullptr));
+    PetscOptionsEnd();
+    if (W_ <= 0) W_ = 4 * sim.set.h;
+    PetscInt nb, nt, nW;
+    PetscCall(CheckCells(sim.comm, "-layers_bottom_height", Hb_, sim.set.h, &nb));
+    PetscCall(CheckCells(sim.comm, "-layers_top_height", Ht_, sim.set.h, &nt));
+    PetscCall(CheckCells(sim.comm, "-layers_width", W_, sim.set.h, &nW));
+    sim.origin[0] = sim.origin[1] = 0;
+    sim.ncell[0] = nW;
+    sim.ncell[1] = nb + nt + 2;
+    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
+    sim.face[YMIN] = FaceBC::Fixed;
+    sim.mats.resize(2);
+    PetscCall(MaterialFromOptions(sim.comm, "bottom", sim.mats[0]));
+    PetscCall(MaterialFromOptions(sim.comm, "top", sim.mats[1]));
+    PetscCheck(sim.mats[0].gamma > 0 && sim.mats[1].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-mat_bottom_gamma and -mat_top_gamma must be > 0 for layers under self-weight");
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+    PetscFunctionBeginUser;
+    const double Hb = Hb_, H = Hb_ + Ht_, W = W_;
+    FillRegular(
+        sim,
+        [=](const double x[DIM]) {
+          if (x[0] >= W || x[1] >= H) return -1;
+          return x[1] < Hb ? 0 : 1;
+        },
+        out);
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode results(Simulation &sim, std::string &json) override {
+    ParticleView P;
+    PetscFunctionBeginUser;
+    const double H = Hb_ + Ht_;
+    // sums: top u, top u_exact, top count, interface u, interface u_exact, interface count,
+    //       stress err^2 V, stress^2 V, disp err^2 V, disp^2 V
+    double s[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    PetscCall(ParticlesGetView(sim.parts, P));
+    for (PetscInt p = 0; p < P.n; ++p) {
+      const double Y = P.x0[p * DIM + 1], V0 = P.vol0[p], l = P.lp[p * DIM + 1];
+      const double u = P.x[p * DIM + 1] - Y, ue = u_exact(sim, Y);
+      const double se = stress_exact(sim, Y), sy = P.stress[p * NSTRESS + 1];
+      if (Y + l > H - 1e-9 * H) { // top face
+        s[0] += -u;
+        s[1] += -ue;
+        s[2] += 1;
+      }
+      if (Y < Hb_ && Y + l > Hb_ - 1e-9 * H) { // bottom layer's upper face
+        s[3] += -u;
+        s[4] += -ue;
+        s[5] += 1;
+      }
+      s[6] += (sy - se) * (sy - se) * V0;
+      s[7] += se * se * V0;
+      s[8] += (u - ue) * (u - ue) * V0;
+      s[9] += ue * ue * V0;
+    }
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    PetscCall(SumAll(sim.comm, s, 10));
+    const MaterialEntry &b = sim.mats[0], &t = sim.mats[1];
+    const char *sep = ",\n    ";
+    json = json_kv("stiffness_ratio", t.el.E / b.el.E) + sep +
+           json_kv("unit_weight_ratio", t.gamma / b.gamma) + sep +
+           json_kv("top_settlement", s[0] / s[2]) + sep +
+           json_kv("top_settlement_exact", s[1] / s[2]) + sep +
+           json_kv("top_settlement_error_rel", std::fabs(s[0] - s[1]) / std::fabs(s[1])) + sep +
+           json_kv("interface_settlement", s[3] / s[5]) + sep +
+           json_kv("interface_settlement_exact", s[4] / s[5]) + sep +
+           json_kv("interface_settlement_error_rel", std::fabs(s[3] - s[4]) / std::fabs(s[4])) +
+           sep + json_kv("stress_l2_error_rel", std::sqrt(s[6] / s[7])) + sep +
+           json_kv("displacement_l2_error_rel", std::sqrt(s[8] / s[9]));
+    PetscFunctionReturn(0);
+  }
+};
+
+std::unique_ptr<Scene> make_layers_scene() {
+  return std::make_unique<LayersScene>();
+}
+
+} // namespace pmpm
