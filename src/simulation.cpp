@@ -5,6 +5,7 @@
 #include "pmpm/materials/von_mises.hpp"
 #include <limits>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace pmpm {
@@ -214,6 +215,63 @@ PetscErrorCode SimulationIndexParticles(Simulation &sim) {
   PetscFunctionReturn(0);
 }
 
+namespace {
+const char *const kFaceNames[2 * DIM] = {"xmin", "xmax", "ymin", "ymax"};
+
+// Box-face boundary conditions: the scene's defaults, overridable per face.
+PetscErrorCode BoundaryFromOptions(Simulation &sim) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(sim.comm, "bc_", "Boundary conditions per box face (defaults: the scene's)",
+                    nullptr);
+  for (int f = 0; f < 2 * DIM; ++f) {
+    char opt[32], topt[32], help[160];
+    snprintf(opt, sizeof(opt), "-%s", kFaceNames[f]);
+    snprintf(topt, sizeof(topt), "-%s_traction", kFaceNames[f]);
+    PetscCall(PetscOptionsEnum(opt, "Face condition: free, roller (normal velocity 0), fixed",
+                               nullptr, FaceBCNames, (PetscEnum)sim.face[f],
+                               (PetscEnum *)&sim.face[f], nullptr));
+    snprintf(help, sizeof(help),
+             "Traction tx,ty (Pa) on the body's outermost particles toward the %s face "
+             "(dead load, ramped with the loads; the face must be free)",
+             kFaceNames[f]);
+    PetscInt n = DIM;
+    PetscBool set = PETSC_FALSE;
+    PetscCall(PetscOptionsRealArray(topt, help, nullptr, sim.face_traction[f], &n, &set));
+    PetscCheck(!set || n == DIM, sim.comm, PETSC_ERR_USER_INPUT,
+               "-bc_%s_traction needs %d components, got %" PetscInt_FMT, kFaceNames[f], DIM, n);
+  }
+  PetscOptionsEnd();
+  for (int f = 0; f < 2 * DIM; ++f)
+    PetscCheck(sim.face[f] == FaceBC::Free ||
+                   (sim.face_traction[f][0] == 0 && sim.face_traction[f][1] == 0),
+               sim.comm, PETSC_ERR_ARG_INCOMP,
+               "-bc_%s_traction needs -bc_%s free (a held face takes no traction)", kFaceNames[f],
+               kFaceNames[f]);
+  PetscFunctionReturn(0);
+}
+
+// A face traction loads the particles whose blocks reach the body's extreme toward that face:
+// force t * (the block's face length), applied at the block's face (tface, see p2g_traction).
+PetscErrorCode ApplyFaceTractions(Simulation &sim, std::vector<ParticleInit> &init) {
+  PetscFunctionBeginUser;
+  for (int f = 0; f < 2 * DIM; ++f) {
+    const double *t = sim.face_traction[f];
+    if (t[0] == 0 && t[1] == 0) continue;
+    const int d = f / 2, o = 1 - d;
+    const double sgn = f % 2 ? 1.0 : -1.0; // outward along d
+    double ext = -1e300;
+    for (const auto &q : init) ext = std::fmax(ext, sgn * (q.x[d] + sgn * q.lp[d]));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ext, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
+    for (auto &q : init)
+      if (sgn * (q.x[d] + sgn * q.lp[d]) > ext - 1e-9 * sim.set.h) {
+        for (int e = 0; e < DIM; ++e) q.traction[e] += t[e] * 2.0 * q.lp[o];
+        q.tface[d] = sgn * q.lp[d];
+      }
+  }
+  PetscFunctionReturn(0);
+}
+} // namespace
+
 PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
@@ -224,6 +282,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
              "-scene %s is unknown; allowed: bar, column, landfill, incline, layers, block",
              sim.set.scene.c_str());
   PetscCall(sim.scene->setup(sim));
+  PetscCall(BoundaryFromOptions(sim));
   PetscCheck(!sim.mats.empty(), sim.comm, PETSC_ERR_PLIB, "scene defined no material");
 
   // Inertia: either the given densities, or one wave speed for all materials (the fastest
@@ -280,6 +339,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(ParticlesCreate(sim.grid, sim.parts));
   std::vector<ParticleInit> init;
   PetscCall(sim.scene->generate(sim, init));
+  PetscCall(ApplyFaceTractions(sim, init));
   // The PMPM support spans at most two cells per direction: 0 < l <= h/2.
   for (const auto &q : init)
     for (int d = 0; d < DIM; ++d)

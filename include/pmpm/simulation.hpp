@@ -95,6 +95,8 @@ struct Simulation {
   double origin[DIM] = {0, 0};
   PetscInt ncell[DIM] = {0, 0};
   FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
+  // Traction (Pa) on the body's outermost particles toward each box face (free faces only).
+  double face_traction[2 * DIM][DIM] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}};
   std::vector<MaterialEntry> mats;
 
   Grid grid;

@@ -61,6 +61,7 @@ public:
     sim.face[XMIN] = FaceBC::Roller;
     sim.face[YMIN] = FaceBC::Roller;
     if (top_roller_) sim.face[YMAX] = FaceBC::Roller;
+    sim.face_traction[XMAX][0] = t_; // on the bar's end, the body's face toward x max
     sim.mats.resize(1);
     PetscCall(MaterialFromOptions(sim.comm, "bar", sim.mats[0]));
     PetscFunctionReturn(0);
@@ -71,13 +72,7 @@ public:
     const double L = L_, B = B_;
     FillRegular(
         sim, [L, B](const double x[DIM]) { return x[0] < L && x[1] < B ? 0 : -1; }, out);
-    for (auto &q : out) {
-      if (q.x[0] + q.lp[0] > L - 1e-9 * L) { // the loaded end face
-        q.traction[0] = t_ * 2.0 * q.lp[1];
-        q.tface[0] = q.lp[0];
-      }
-    }
-    PetscFunctionReturn(0);
+    PetscFunctionReturn(0); // the end traction is the xmax face traction (SimulationSetup)
   }
 
   PetscErrorCode monitor(Simulation &sim) override {

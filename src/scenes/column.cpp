@@ -1,4 +1,5 @@
-// A column under self-weight (REFERENCE.md 2.2): height H, base fixed, sides on rollers, top free.
+// A column under self-weight (REFERENCE.md 2.2): height H, base fixed, sides on rollers, top free
+// or loaded by a surcharge q (-bc_ymax_traction 0,-q), which adds -q to the stress below.
 // Uniaxial strain, so the Cauchy stress at initial height Y is exactly -gamma (H - Y) at any
 // deformation (the weight above is conserved). Each model's law then gives J(Y), and
 // y(Y) = int_0^Y J dY:
@@ -39,12 +40,16 @@ class ColumnScene final : public Scene {
     const double dY = H_ / kPanels;
     ytab_.assign(kPanels + 1, 0.0);
     jtab_.assign(kPanels + 1, 0.0);
-    for (int k = 0; k <= kPanels; ++k) jtab_[k] = J_of_stress(m, -m.gamma * (H_ - k * dY));
+    for (int k = 0; k <= kPanels; ++k) jtab_[k] = J_of_stress(m, sigma_exact(k * dY));
     for (int k = 0; k < kPanels; ++k) {
-      const double jm = J_of_stress(m, -m.gamma * (H_ - (k + 0.5) * dY));
+      const double jm = J_of_stress(m, sigma_exact((k + 0.5) * dY));
       ytab_[k + 1] = ytab_[k] + dY / 6.0 * (jtab_[k] + 4.0 * jm + jtab_[k + 1]);
     }
   }
+  // sigma_yy at initial height Y: the weight above plus a surcharge q on the top face
+  // (-bc_ymax_traction 0,-q), both conserved at any deformation.
+  double gamma_ = 0, q_ = 0;
+  double sigma_exact(double Y) const { return -gamma_ * (H_ - Y) - q_; }
   double u_exact(double Y) const {
     const double dY = H_ / kPanels;
     const int k = std::min(kPanels - 1, std::max(0, static_cast<int>(Y / dY)));
@@ -90,6 +95,8 @@ public:
     ParticleView P;
     PetscFunctionBeginUser;
     const MaterialEntry &m = sim.mats[0];
+    gamma_ = m.gamma;
+    q_ = -sim.face_traction[YMAX][1];
     tabulate(m);
     // sums: top u, top u_exact, top count, stress err^2 V, stress^2 V, disp err^2 V, disp^2 V
     double s[7] = {0, 0, 0, 0, 0, 0, 0};
@@ -97,7 +104,7 @@ public:
     for (PetscInt p = 0; p < P.n; ++p) {
       const double Y = P.x0[p * DIM + 1], V0 = P.vol0[p];
       const double u = P.x[p * DIM + 1] - Y, ue = u_exact(Y);
-      const double se = -m.gamma * (H_ - Y), sy = P.stress[p * NSTRESS + 1];
+      const double se = sigma_exact(Y), sy = P.stress[p * NSTRESS + 1];
       if (Y + P.lp[p * DIM + 1] > H_ - 1e-9 * H_) {
         s[0] += -u;
         s[1] += -ue;
@@ -110,13 +117,13 @@ public:
     }
     PetscCall(ParticlesRestoreView(sim.parts, P));
     PetscCall(SumAll(sim.comm, s, 7));
-    const double small = m.gamma * H_ * H_ / (2 * m.el.M());
+    const double small = (m.gamma * H_ * H_ / 2 + q_ * H_) / m.el.M();
     json = json_kv("top_settlement", s[0] / s[2]) + ",\n    " +
            json_kv("top_settlement_exact", s[1] / s[2]) + ",\n    " +
            json_kv("top_surface_settlement_small_strain", small) + ",\n    " +
            json_kv("stress_l2_error_rel", std::sqrt(s[3] / s[4])) + ",\n    " +
            json_kv("displacement_l2_error_rel", std::sqrt(s[5] / s[6])) + ",\n    " +
-           "\"model\": \"" + m.model->model() + "\"";
+           json_kv("surcharge", q_) + ",\n    " + "\"model\": \"" + m.model->model() + "\"";
     PetscFunctionReturn(0);
   }
 };
