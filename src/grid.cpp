@@ -39,16 +39,24 @@ PetscErrorCode GridDestroy(Grid &g) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode GridGetLocal(Grid &g, bool zero, GridView &v) {
-  PetscFunctionBeginUser;
-  if (zero) PetscCall(VecZeroEntries(g.local));
+namespace {
+// The geometry of a view: the ghosted node range for the local vector, the owned one for the
+// global vector.
+void SetView(const Grid &g, bool ghosted, GridView &v) {
   v.h = g.h;
   for (int d = 0; d < DIM; ++d) {
     v.origin[d] = g.origin[d];
     v.ncell[d] = g.ncell[d];
-    v.gs[d] = g.gs[d];
-    v.gm[d] = g.gm[d];
+    v.gs[d] = ghosted ? g.gs[d] : g.s[d];
+    v.gm[d] = ghosted ? g.gm[d] : g.m[d];
   }
+}
+} // namespace
+
+PetscErrorCode GridGetLocal(Grid &g, bool zero, GridView &v) {
+  PetscFunctionBeginUser;
+  if (zero) PetscCall(VecZeroEntries(g.local));
+  SetView(g, true, v);
   PetscCall(VecGetArray(g.local, &v.data));
   PetscFunctionReturn(0);
 }
@@ -62,13 +70,7 @@ PetscErrorCode GridRestoreLocal(Grid &g, GridView &v) {
 
 PetscErrorCode GridGetGlobal(Grid &g, GridView &v) {
   PetscFunctionBeginUser;
-  v.h = g.h;
-  for (int d = 0; d < DIM; ++d) {
-    v.origin[d] = g.origin[d];
-    v.ncell[d] = g.ncell[d];
-    v.gs[d] = g.s[d];
-    v.gm[d] = g.m[d];
-  }
+  SetView(g, false, v);
   PetscCall(VecGetArray(g.global, &v.data));
   PetscFunctionReturn(0);
 }

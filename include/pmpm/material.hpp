@@ -62,4 +62,21 @@ inline Mat3 elastic_increment(const ElasticConstants &c, const Mat3 &de) {
   return c.lambda() * de.trace() * Mat3::Identity() + 2.0 * c.G() * de;
 }
 
+// The rate-form elastoplastic update shared by the plastic models: elastic predictor (Jaumann-
+// rotated old stress + C : de) and a return map ret(Mat3 &sigma, double &eps_p) per particle.
+template <class Return>
+inline void predictor_corrector(const StressBatch &b, const ElasticConstants &el, Return &&ret) {
+  for (int k = 0; k < b.n; ++k) {
+    const int p = b.idx[k];
+    Mat3 de, dw;
+    strain_and_spin(b.dudx + p * DIM * DIM, de, dw);
+    Mat3 s =
+        jaumann_rotate(stress_to_tensor(b.stress + p * NSTRESS), dw) + elastic_increment(el, de);
+    double ep = b.eps_p ? b.eps_p[p] : 0.0;
+    ret(s, ep);
+    if (b.eps_p) b.eps_p[p] = ep;
+    tensor_to_stress(s, b.stress + p * NSTRESS);
+  }
+}
+
 } // namespace pmpm

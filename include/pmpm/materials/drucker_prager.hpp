@@ -194,17 +194,8 @@ public:
   const DruckerPragerParams &params() const { return prm_; }
   const DPCoefficients &coefficients() const { return k_; }
   void update_stress(const StressBatch &b) const override {
-    for (int k = 0; k < b.n; ++k) {
-      const int p = b.idx[k];
-      Mat3 de, dw;
-      strain_and_spin(b.dudx + p * DIM * DIM, de, dw);
-      Mat3 s = jaumann_rotate(stress_to_tensor(b.stress + p * NSTRESS), dw) +
-               elastic_increment(prm_.el, de);
-      double ep = b.eps_p ? b.eps_p[p] : 0.0;
-      drucker_prager_return(prm_, k_, s, ep);
-      if (b.eps_p) b.eps_p[p] = ep;
-      tensor_to_stress(s, b.stress + p * NSTRESS);
-    }
+    predictor_corrector(b, prm_.el,
+                        [this](Mat3 &s, double &ep) { drucker_prager_return(prm_, k_, s, ep); });
   }
 
 private:
