@@ -31,7 +31,7 @@ struct Settings {
   bool quiet = false;
   PetscInt output_every = 0;
   double tol = 1e-6; // -tol, unbalanced-force ratio for convergence
-  Damping damping = Damping::Local;
+  Damping damping = Damping::Kinetic; // BENCHMARKS.md: 0.38x the steps of local damping
   double damping_alpha = 0.8;
   PetscInt ramp_steps = 0;
   double pic = 0.05; // a little PIC damps the FLIP velocity noise the grid cannot see
