@@ -190,6 +190,13 @@ public:
                "-landfill_membrane_layers must be in 0..16 (got %" PetscInt_FMT ")", layers_);
     PetscCheck(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-landfill_membrane_thickness must be > 0");
+    // A layer's block is at most one cell thick (PMPM support): t / N > h would leave gaps.
+    PetscCheck(layers_ == 0 || t_ / layers_ <= sim.set.h * (1 + 1e-9), sim.comm,
+               PETSC_ERR_ARG_OUTOFRANGE,
+               "-landfill_membrane_layers %" PetscInt_FMT " gives layers %g m thick, more than "
+               "-cell_size %g m: their blocks would not cover the membrane; use at least %d "
+               "layers (or 0 for the regular fill)",
+               layers_, t_ / layers_, sim.set.h, (int)std::ceil(t_ / sim.set.h - 1e-9));
     PetscCheck(
         D_ > 0 && D_ < Hw_ && Xc_ - D_ / 2 > 0 && Xc_ + D_ / 2 < W_, sim.comm,
         PETSC_ERR_ARG_OUTOFRANGE,
