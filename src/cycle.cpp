@@ -86,6 +86,7 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   G2PParams pp;
   pp.dt = dt;
   pp.pic = sim.set.pic;
+  for (int d = 0; d < DIM; ++d) pp.gdir[d] = load.gdir[d];
   PetscCall(GridGetLocal(g, false, G));
   if (!sim.set.musl) {
     g2p<Shape>(P, G, G1, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);

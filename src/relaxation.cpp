@@ -41,13 +41,13 @@ struct EnergyBudget {
 };
 
 // sum_p f_p . v_p over this rank's particles (the load's power after the step).
-double LoadPower(const ParticleView &P, const Load &load) {
+// Power of the surface tractions on this rank's loaded particles (per unit load factor); the
+// body forces' share comes from G2P (G2PStats::weight_power).
+double TractionPower(const ParticleView &P, const std::vector<PetscInt> &idx) {
   double pw = 0;
-  for (PetscInt p = 0; p < P.n; ++p) {
-    const double *v = P.v + p * DIM, *t = P.traction + p * DIM;
-    for (int d = 0; d < DIM; ++d) pw += (P.weight[p] * load.gdir[d] + t[d]) * v[d];
-  }
-  return load.factor * pw;
+  for (const PetscInt p : idx)
+    for (int d = 0; d < DIM; ++d) pw += P.traction[p * DIM + d] * P.v[p * DIM + d];
+  return pw;
 }
 
 // Elastic energy of this rank's particles: V sigma : C^-1 : sigma / 2 (plane strain, sigma_zz
@@ -148,11 +148,15 @@ PetscErrorCode Relax(Simulation &sim) {
   for (run.step = 1; run.step <= s.max_steps; ++run.step) {
     load.factor = s.ramp_steps > 0 ? std::fmin(1.0, double(run.step) / s.ramp_steps) : 1.0;
     PetscCall(Step(sim, load, run.dt, rep));
-    {
-      ParticleView P; // the work of this step's loads (before a scene changes them in monitor)
-      PetscCall(ParticlesGetView(sim.parts, P));
-      budget.w_local += run.dt * LoadPower(P, load);
-      PetscCall(ParticlesRestoreView(sim.parts, P));
+    { // the work of this step's loads (before a scene changes them in monitor)
+      double pw = rep.g2p.weight_power;
+      if (!sim.traction_idx.empty()) {
+        ParticleView P;
+        PetscCall(ParticlesGetView(sim.parts, P));
+        pw += TractionPower(P, sim.traction_idx);
+        PetscCall(ParticlesRestoreView(sim.parts, P));
+      }
+      budget.w_local += run.dt * load.factor * pw;
     }
     run.time += run.dt;
     PetscCall(sim.scene->monitor(sim));

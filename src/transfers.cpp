@@ -223,6 +223,7 @@ void g2p_impl(const ParticleView &P, const GridView &G0, const GridView *G1, con
     P.vol[p] = J * P.vol0[p];
     const double speed2 = v[0] * v[0] + v[1] * v[1];
     st->kinetic += 0.5 * P.mass[p] * speed2;
+    st->weight_power += P.weight[p] * (prm.gdir[0] * v[0] + prm.gdir[1] * v[1]);
     // Instability and escape checks, reported by the caller with the particle's id. The centre
     // must stay on the grid (the ghosted DMDA has room for the support beyond it).
     const char *what = nullptr;

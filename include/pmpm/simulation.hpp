@@ -30,7 +30,7 @@ struct Settings {
   std::string output_dir;
   bool quiet = false;
   PetscInt output_every = 0;
-  double tol = 1e-6; // -tol, unbalanced-force ratio for convergence
+  double tol = 1e-6;                  // -tol, unbalanced-force ratio for convergence
   Damping damping = Damping::Kinetic; // BENCHMARKS.md: 0.38x the steps of local damping
   double damping_alpha = 0.8;
   PetscInt ramp_steps = 0;

@@ -56,13 +56,15 @@ void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &stat
 
 struct G2PParams {
   double dt = 0;
-  double pic = 0; // PIC fraction of the velocity update (0 = pure FLIP)
+  double pic = 0;            // PIC fraction of the velocity update (0 = pure FLIP)
+  double gdir[DIM] = {0, 0}; // gravity direction, for the power of the body forces
 };
 
 struct G2PStats {
   double max_c = 0, max_v = 0; // max_p c_p and max_p |v_p|
   double max_speed = 0;        // max_c + max_v (bounds c_p + |v_p|; the next stable step)
   double kinetic = 0;          // particle kinetic energy
+  double weight_power = 0;     // sum_p weight_p (gdir . v_p): body-force power per load factor
   PetscInt left_rank = 0;      // particles now centred outside this rank's cells
   PetscInt bad = 0;            // particles with J <= 0, a non-finite value, or off the grid
   PetscInt bad_pid = -1;       // the first such particle
