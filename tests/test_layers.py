@@ -11,7 +11,7 @@ Steps to convergence (1 and 2 ranks alike), pmpm / mpm, kinetic damping:
     r = 1,   g = 1:      803 /   792        r = 1e5, g = 1:    31434 / 32363
     r = 1e2, g = 1:     2582 /  2398        r = 1e5, g = 1e6:  31348 / 32079
     r = 1,   g = 1e6:    852 /   803
-With local damping (the default) the stiff top on the soft bottom is a heavy mass on a soft
+With local damping (-damping local) the stiff top on the soft bottom is a heavy mass on a soft
 spring that takes ~sqrt(r) times longer: r = 1e2, 1e3, 1e4, 1e5 took 20777, 60001, 171599,
 494175 steps (pmpm; 24 s for 1e5) and 17894, 51221, 116482, 272974 (mpm); hence kinetic damping.
 
