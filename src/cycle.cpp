@@ -32,9 +32,7 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     const PetscInt nb = static_cast<PetscInt>(sim.iface_idx.size());
     PetscCall(GridGetLocal(gb, true, G));
     p2g<Shape>(P, load, G, sim.iface_idx.data(), nb);
-    for (PetscInt q = 0; q < G.gm[0] * G.gm[1]; ++q)
-      for (int d = 0; d < DIM; ++d) G.data[q * GridDof::NDOF + GridDof::FEXT + d] = 0.0;
-    p2g_colour_gradient<Shape>(P, sim.iface_idx.data(), nb, G);
+    p2g_colour_gradient<Shape>(P, sim.iface_idx.data(), nb, G); // replaces the FEXT slots
     PetscCall(GridRestoreLocal(gb, G));
     PetscCall(PetscLogEventEnd(ev_iface, 0, 0, 0, 0));
   }

@@ -106,6 +106,9 @@ void p2g_traction(const ParticleView &P, const std::vector<PetscInt> &idx, doubl
 template <class Shape>
 void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt nidx,
                          const GridView &G) {
+  // the body grid has no use for its external force: its FEXT slots carry the gradient
+  for (PetscInt q = 0; q < G.gm[0] * G.gm[1]; ++q)
+    for (int d = 0; d < DIM; ++d) G.data[q * GridDof::NDOF + GridDof::FEXT + d] = 0.0;
   constexpr int NS = Shape::NS;
   Weights<Shape> W;
   for (PetscInt k = 0; k < nidx; ++k) {

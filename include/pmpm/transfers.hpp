@@ -27,7 +27,8 @@ void p2g(const ParticleView &P, const Load &load, const GridView &G, const Petsc
          PetscInt nidx = 0);
 
 // Interface normals: the nodal gradient of the volume-weighted colour, sum_p V_p c_p grad S_ip,
-// into the FEXT slots (the paper's central difference of cell-average colour, section 3.2).
+// written over the FEXT slots of the whole view (the paper's central difference of cell-average
+// colour, section 3.2).
 template <class Shape>
 void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt nidx,
                          const GridView &G);
