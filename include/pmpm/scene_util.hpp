@@ -17,6 +17,17 @@ void FillRegular(const Simulation &sim, const MaterialAt &at, std::vector<Partic
 PetscErrorCode CheckCells(MPI_Comm comm, const char *option, double length, double h,
                           PetscInt *cells);
 
+// Uniaxial strain (1D columns): every particle's sigma_yy and u_y against exact functions of its
+// initial height Y. Returns the volume-weighted relative L2 errors and, for each height in rows,
+// the mean u_y (and its exact value) of the particles just below it (Y < row <= Y + l).
+struct VerticalComparison {
+  double stress_l2 = 0, displacement_l2 = 0;
+  std::vector<double> row_u, row_u_exact;
+};
+PetscErrorCode CompareVertical(Simulation &sim, const std::function<double(double)> &sigma_yy,
+                               const std::function<double(double)> &u_y,
+                               const std::vector<double> &rows, VerticalComparison &out);
+
 // Sum of values over all ranks.
 PetscErrorCode SumAll(MPI_Comm comm, double *v, int n);
 

@@ -92,37 +92,21 @@ public:
   }
 
   PetscErrorCode results(Simulation &sim, std::string &json) override {
-    ParticleView P;
     PetscFunctionBeginUser;
     const MaterialEntry &m = sim.mats[0];
     gamma_ = m.gamma;
     q_ = -sim.face_traction[YMAX][1];
     tabulate(m);
-    // sums: top u, top u_exact, top count, stress err^2 V, stress^2 V, disp err^2 V, disp^2 V
-    double s[7] = {0, 0, 0, 0, 0, 0, 0};
-    PetscCall(ParticlesGetView(sim.parts, P));
-    for (PetscInt p = 0; p < P.n; ++p) {
-      const double Y = P.x0[p * DIM + 1], V0 = P.vol0[p];
-      const double u = P.x[p * DIM + 1] - Y, ue = u_exact(Y);
-      const double se = sigma_exact(Y), sy = P.stress[p * NSTRESS + 1];
-      if (Y + P.lp[p * DIM + 1] > H_ - 1e-9 * H_) {
-        s[0] += -u;
-        s[1] += -ue;
-        s[2] += 1;
-      }
-      s[3] += (sy - se) * (sy - se) * V0;
-      s[4] += se * se * V0;
-      s[5] += (u - ue) * (u - ue) * V0;
-      s[6] += ue * ue * V0;
-    }
-    PetscCall(ParticlesRestoreView(sim.parts, P));
-    PetscCall(SumAll(sim.comm, s, 7));
+    VerticalComparison c;
+    PetscCall(CompareVertical(
+        sim, [this](double Y) { return sigma_exact(Y); }, [this](double Y) { return u_exact(Y); },
+        {H_}, c));
     const double small = (m.gamma * H_ * H_ / 2 + q_ * H_) / m.el.M();
-    json = json_kv("top_settlement", s[0] / s[2]) + ",\n    " +
-           json_kv("top_settlement_exact", s[1] / s[2]) + ",\n    " +
+    json = json_kv("top_settlement", -c.row_u[0]) + ",\n    " +
+           json_kv("top_settlement_exact", -c.row_u_exact[0]) + ",\n    " +
            json_kv("top_surface_settlement_small_strain", small) + ",\n    " +
-           json_kv("stress_l2_error_rel", std::sqrt(s[3] / s[4])) + ",\n    " +
-           json_kv("displacement_l2_error_rel", std::sqrt(s[5] / s[6])) + ",\n    " +
+           json_kv("stress_l2_error_rel", c.stress_l2) + ",\n    " +
+           json_kv("displacement_l2_error_rel", c.displacement_l2) + ",\n    " +
            json_kv("surcharge", q_) + ",\n    " + "\"model\": \"" + m.model->model() + "\"";
     PetscFunctionReturn(0);
   }

@@ -42,6 +42,44 @@ PetscErrorCode CheckCells(MPI_Comm comm, const char *option, double length, doub
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode CompareVertical(Simulation &sim, const std::function<double(double)> &sigma_yy,
+                               const std::function<double(double)> &u_y,
+                               const std::vector<double> &rows, VerticalComparison &out) {
+  ParticleView P;
+  PetscFunctionBeginUser;
+  const size_t nr = rows.size();
+  // sums: stress err^2 V, stress^2 V, disp err^2 V, disp^2 V, then per row: u, u_exact, count
+  std::vector<double> s(4 + 3 * nr, 0.0);
+  const double tol = 1e-9 * (rows.empty() ? 1.0 : std::fabs(rows.back()));
+  PetscCall(ParticlesGetView(sim.parts, P));
+  for (PetscInt p = 0; p < P.n; ++p) {
+    const double Y = P.x0[p * DIM + 1], V0 = P.vol0[p], l = P.lp[p * DIM + 1];
+    const double u = P.x[p * DIM + 1] - Y, ue = u_y(Y);
+    const double se = sigma_yy(Y), sy = P.stress[p * NSTRESS + 1];
+    s[0] += (sy - se) * (sy - se) * V0;
+    s[1] += se * se * V0;
+    s[2] += (u - ue) * (u - ue) * V0;
+    s[3] += ue * ue * V0;
+    for (size_t r = 0; r < nr; ++r)
+      if (Y < rows[r] && Y + l > rows[r] - tol) {
+        s[4 + 3 * r] += u;
+        s[5 + 3 * r] += ue;
+        s[6 + 3 * r] += 1;
+      }
+  }
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  PetscCall(SumAll(sim.comm, s.data(), static_cast<int>(s.size())));
+  out.stress_l2 = std::sqrt(s[0] / s[1]);
+  out.displacement_l2 = std::sqrt(s[2] / s[3]);
+  out.row_u.assign(nr, 0.0);
+  out.row_u_exact.assign(nr, 0.0);
+  for (size_t r = 0; r < nr; ++r) {
+    out.row_u[r] = s[4 + 3 * r] / s[6 + 3 * r];
+    out.row_u_exact[r] = s[5 + 3 * r] / s[6 + 3 * r];
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SumAll(MPI_Comm comm, double *v, int n) {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_SUM, comm));
