@@ -1,6 +1,7 @@
 // Minimal assertion helpers for the unit-test executables (no framework needed).
 #pragma once
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 
@@ -30,6 +31,17 @@ inline void check_true(bool ok, const char *what, const char *file, int line) {
     std::printf("FAIL %s:%d %s\n", file, line, what);
   }
 }
+// Deterministic generator (64-bit LCG), uniform in [0, 1); the seed picks the sequence.
+struct Lcg {
+  std::uint64_t s;
+  explicit Lcg(std::uint64_t seed) : s(seed) {}
+  double next() {
+    s = s * 6364136223846793005ull + 1442695040888963407ull;
+    return double(s >> 11) / double(1ull << 53);
+  }
+  double uniform(double a, double b) { return a + (b - a) * next(); }
+};
+
 inline int report(const char *suite) {
   std::printf("%s: %d checks, %d passed, %d failed\n", suite, checks(), checks() - failures(),
               failures());
@@ -37,5 +49,6 @@ inline int report(const char *suite) {
 }
 } // namespace pmpm_test
 
-#define CHECK_CLOSE(got, want, tol) pmpm_test::check_close((got), (want), (tol), #got, __FILE__, __LINE__)
+#define CHECK_CLOSE(got, want, tol)                                                                \
+  pmpm_test::check_close((got), (want), (tol), #got, __FILE__, __LINE__)
 #define CHECK(cond) pmpm_test::check_true((cond), #cond, __FILE__, __LINE__)

@@ -16,14 +16,9 @@ using namespace pmpm;
 
 namespace {
 
-// Deterministic generator (64-bit LCG), uniform in [0, 1).
-struct Lcg {
-  std::uint64_t s = 0x2545F4914F6CDD1Dull;
-  double next() {
-    s = s * 6364136223846793005ull + 1442695040888963407ull;
-    return double(s >> 11) / double(1ull << 53);
-  }
-  double uniform(double a, double b) { return a + (b - a) * next(); }
+// The sequence these tests were written with (pmpm_test::Lcg).
+struct Lcg : pmpm_test::Lcg {
+  Lcg() : pmpm_test::Lcg(0x2545F4914F6CDD1Dull) {}
 };
 
 // A grid that is not aligned with 0 and a cell size that is not a power of two, so that the
