@@ -32,7 +32,10 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     const PetscInt nb = static_cast<PetscInt>(sim.iface_idx.size());
     PetscCall(GridGetLocal(gb, true, G));
     p2g<Shape>(P, load, G, sim.iface_idx.data(), nb);
-    p2g_colour_gradient<Shape>(P, sim.iface_idx.data(), nb, G); // replaces the FEXT slots
+    if (sim.iface.normals == InterfaceNormals::Cells)
+      p2g_cell_colour(P, G); // all particles
+    else
+      p2g_colour_gradient<Shape>(P, sim.iface_idx.data(), nb, G); // in FEXT slots
     PetscCall(GridRestoreLocal(gb, G));
     PetscCall(PetscLogEventEnd(ev_iface, 0, 0, 0, 0));
   }
@@ -42,6 +45,19 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   PetscCall(GridLocalToGlobalAdd(g));
   if (iface) PetscCall(GridLocalToGlobalAdd(gb));
   PetscCall(PetscLogEventEnd(ev_l2g, 0, 0, 0, 0));
+  // 2b. The paper's normals: central differences of the cell-average colour need the
+  //     neighbouring cells' sums, one more ghost exchange of the body grid.
+  if (iface && sim.iface.normals == InterfaceNormals::Cells) {
+    PetscCall(PetscLogEventBegin(ev_iface, 0, 0, 0, 0));
+    GridView C, B;
+    PetscCall(GridGlobalToLocal(gb));
+    PetscCall(GridGetLocal(gb, false, C));
+    PetscCall(GridGetGlobal(gb, B));
+    cell_colour_normals(C, B);
+    PetscCall(GridRestoreGlobal(gb, B));
+    PetscCall(GridRestoreLocal(gb, C));
+    PetscCall(PetscLogEventEnd(ev_iface, 0, 0, 0, 0));
+  }
 
   // 3. Nodal momentum balance with damping and boundary conditions (eq. 1-2).
   PetscCall(PetscLogEventBegin(ev_grid, 0, 0, 0, 0));
@@ -160,14 +176,19 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &re
   // 7. Reductions: unbalanced force, loads, energy, wave speed, escapes (two allreduces).
   double mx[4] = {rep.grid.max_unbalanced, rep.g2p.max_c, rep.g2p.max_v,
                   static_cast<double>(rep.g2p.bad > 0 ? sim.rank + 1 : 0)};
-  double sm[6] = {rep.grid.sum_ext,        rep.grid.n_ext,
+  double sm[8] = {rep.grid.sum_ext,        rep.grid.n_ext,
                   rep.g2p.kinetic,         static_cast<double>(rep.g2p.left_rank),
-                  rep.iface.contact_nodes, rep.iface.slip_nodes};
+                  rep.iface.contact_nodes, rep.iface.slip_nodes,
+                  rep.iface.compression,   rep.iface.tension};
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 4, MPI_DOUBLE, MPI_MAX, sim.comm));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, 6, MPI_DOUBLE, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, 8, MPI_DOUBLE, MPI_SUM, sim.comm));
   rep.iface.contact_nodes = sm[4];
   rep.iface.slip_nodes = sm[5];
+  rep.iface.compression = sm[6];
+  rep.iface.tension = sm[7];
   sim.iface_stats = rep.iface;
+  sim.iface_impulse[0] += sm[6];
+  sim.iface_impulse[1] += sm[7];
   rep.grid.max_unbalanced = mx[0];
   rep.g2p.max_c = mx[1];
   rep.g2p.max_v = mx[2];

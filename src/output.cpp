@@ -211,19 +211,32 @@ PetscErrorCode OutputSummary(Simulation &sim, const std::string &results) {
     FILE *f = std::fopen((path + ".tmp").c_str(), "w");
     PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
     const Settings &s = sim.set;
+    std::string iface;
+    if (sim.iface.type != InterfaceType::Bonded) {
+      const double *I = sim.iface_impulse;
+      const char *sep = ",\n    ";
+      iface = std::string("\"interface\": {\n    \"type\": \"") +
+              InterfaceTypeNames[(int)sim.iface.type] + "\"" + sep + "\"normals\": \"" +
+              InterfaceNormalsNames[(int)sim.iface.normals] + "\"" + sep +
+              json_kv("mu_top", sim.iface.mu_top) + sep +
+              json_kv("mu_bottom", sim.iface.mu_bottom) + sep +
+              json_kv("normal_impulse_compression", I[0]) + sep +
+              json_kv("normal_impulse_tension", I[1]) + sep +
+              json_kv("tension_ratio", I[0] > 0 ? I[1] / I[0] : 0.0) + "\n  },\n  ";
+    }
     std::fprintf(f,
                  "{\n  \"scene\": \"%s\",\n  \"ranks\": %d,\n  \"particles\": %d,\n"
                  "  \"cells\": [%d, %d],\n  %s,\n  \"ppc\": %d,\n  \"shape\": \"%s\",\n"
                  "  \"cfl\": %s,\n  \"steps\": %d,\n  \"time\": %s,\n  %s,\n"
                  "  \"converged\": %s,\n  %s,\n  \"tolerance\": %s,\n  \"migrations\": %d,\n"
-                 "  \"results\": {\n    %s\n  }\n}\n",
+                 "  %s\"results\": {\n    %s\n  }\n}\n",
                  s.scene.c_str(), sim.size, (int)n, (int)sim.ncell[0], (int)sim.ncell[1],
                  json_kv("h", s.h).c_str(), (int)s.ppc, ShapeKindNames[(int)s.shape],
                  json_num(s.cfl).c_str(), (int)sim.run.step, json_num(sim.run.time).c_str(),
                  json_kv("wall_seconds", sim.run.wall_seconds).c_str(),
                  sim.run.converged ? "true" : "false",
                  json_kv("unbalanced_force_ratio", sim.run.ratio).c_str(), json_num(s.tol).c_str(),
-                 (int)sim.run.migrations, results.c_str());
+                 (int)sim.run.migrations, iface.c_str(), results.c_str());
     std::fclose(f);
   }
   PetscCall(OutputCommit(sim, "summary.json"));

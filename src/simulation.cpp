@@ -314,17 +314,26 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
                              "section 3.2), contact (Bardenhagen multi-velocity friction)",
                              nullptr, InterfaceTypeNames, (PetscEnum)sim.iface.type,
                              (PetscEnum *)&sim.iface.type, nullptr));
+  // each type's own normals unless asked otherwise: the paper's cells, Bardenhagen's gradient
+  sim.iface.normals = sim.iface.type == InterfaceType::Contact ? InterfaceNormals::Particles
+                                                               : InterfaceNormals::Cells;
+  PetscCall(PetscOptionsEnum("-normals",
+                             "cells (the paper's central differences of cell-average colour; "
+                             "default of paper) or particles (sum of V c grad S over body 1; "
+                             "default of contact)",
+                             nullptr, InterfaceNormalsNames, (PetscEnum)sim.iface.normals,
+                             (PetscEnum *)&sim.iface.normals, nullptr));
   PetscCall(PetscOptionsReal("-mu_top", "Friction coefficient on the body's upper face, >= 0",
                              nullptr, sim.iface.mu_top, &sim.iface.mu_top, nullptr));
   PetscCall(PetscOptionsReal("-mu_bottom", "Friction coefficient on the body's lower face, >= 0",
                              nullptr, sim.iface.mu_bottom, &sim.iface.mu_bottom, nullptr));
   PetscCall(PetscOptionsReal("-min_share",
-                             "Smallest mass fraction of either body at a contact "
-                             "node (below it the node stays bonded), 0 < s < 0.5",
+                             "A body with at most this fraction of a node's mass is bonded "
+                             "there, 0 <= s < 0.5 (the default only screens round-off)",
                              nullptr, sim.iface.min_share, &sim.iface.min_share, nullptr));
   PetscOptionsEnd();
-  PetscCheck(sim.iface.min_share > 0 && sim.iface.min_share < 0.5, sim.comm,
-             PETSC_ERR_ARG_OUTOFRANGE, "-interface_min_share must be in (0, 0.5)");
+  PetscCheck(sim.iface.min_share >= 0 && sim.iface.min_share < 0.5, sim.comm,
+             PETSC_ERR_ARG_OUTOFRANGE, "-interface_min_share must be in [0, 0.5)");
   PetscCheck(sim.iface.mu_top >= 0 && sim.iface.mu_bottom >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-interface_mu_top and -interface_mu_bottom must be >= 0");
   PetscCheck(!(sim.set.musl && sim.iface.type != InterfaceType::Bonded), sim.comm, PETSC_ERR_SUP,

@@ -1,4 +1,5 @@
 #include "pmpm/transfers.hpp"
+#include <algorithm>
 #include <cmath>
 
 namespace pmpm {
@@ -114,13 +115,30 @@ void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt ni
   for (PetscInt k = 0; k < nidx; ++k) {
     const PetscInt p = idx[k];
     weights<Shape>(P.x + p * DIM, P.lp + p * DIM, G.origin, G.h, W);
-    const double vc = P.vol[p] * P.colour[p];
+    const double vc = P.vol[p] * P.colour[p] / G.h; // per h: a jump of 1 in colour gives O(1)
     for (int b = 0; b < NS; ++b)
       for (int a = 0; a < NS; ++a) {
         double *node = G.node(W.base[0] + a, W.base[1] + b);
         node[GridDof::FEXT + 0] += vc * W.grad[b * NS + a][0];
         node[GridDof::FEXT + 1] += vc * W.grad[b * NS + a][1];
       }
+  }
+}
+
+void p2g_cell_colour(const ParticleView &P, const GridView &G) {
+  for (PetscInt q = 0; q < G.gm[0] * G.gm[1]; ++q)
+    for (int d = 0; d < DIM; ++d) G.data[q * GridDof::NDOF + GridDof::FEXT + d] = 0.0;
+  const double invh = 1.0 / G.h;
+  for (PetscInt p = 0; p < P.n; ++p) {
+    // particles lie inside the grid (checked every step), so the truncation is a floor
+    PetscInt c[DIM];
+    for (int d = 0; d < DIM; ++d) {
+      c[d] = static_cast<PetscInt>((P.x[p * DIM + d] - G.origin[d]) * invh);
+      c[d] = std::min(std::max(c[d], PetscInt(0)), G.ncell[d] - 1);
+    }
+    double *node = G.node(c[0], c[1]);
+    node[GridDof::FEXT + 0] += P.vol[p] * P.colour[p];
+    node[GridDof::FEXT + 1] += P.vol[p];
   }
 }
 

@@ -1,43 +1,53 @@
-"""Block on an incline (REFERENCE.md 2.5), the interface verified on its own.
+"""Block on an incline (REFERENCE.md 2.5), the interface verified on its own, both algorithms.
 
 usage: test_incline.py EXE NP OUTDIR
 theta = 30 deg, g = 9.81: free slip a = 4.905, mu = 0.3 slides with a = 2.356 m/s^2, mu = 0.7 sticks.
-Bounds: 3 % on the sliding acceleration (the issue's; measured 0.12 % at mu = 0.3 and 2.4 % at
-mu = 0, where the block's leading and trailing nodes drag and the error halves with h); sticking
-means an acceleration after the start-up transient below 1 % of g sin(theta) (measured 0.07 %;
-before the normal force builds up the block slides about 1 cm freely) and a large mu reproduces
-the bonded answer to 1 mm. The paper's algorithm (one normal velocity for both layers) sticks and
-slides too, but over-grips in this dynamic test: its bound is looser and stated below.
+Bounds: 3 % on the sliding acceleration (the issue's); sticking means an acceleration after the
+start-up transient below 1 % of g sin(theta), and a large mu reproduces the bonded answer to 1 mm.
+Measured (h = 0.02 m, 1 and 2 ranks alike):
+  contact (Bardenhagen, undamped FLIP): mu = 0, 0.1, 0.3, 0.5 within 0.00, 0.002, 0.004, 0.07 %;
+    mu = 0.7 sticks at 0.1 % of g sin(theta);
+  paper (one normal velocity, cell-average colour normals) with the PIC transfer (-pic 1, which
+    damps the elastic ringing and leaves a rigid slide exact): mu = 0, 0.1, 0.3, 0.5 within 0.00,
+    0.08, 0.44, 0.08 %; mu = 0.7 sticks; tensile normal impulse at most 0.2 % of the compressive.
+  paper without damping (FLIP): the block rings, the common normal holds it down in the tensile
+    half-cycles (tension 75 % of compression), friction counts only the pressing half, and
+    mu = 0.3 sticks. The run must say so: the warning and tension_ratio > 0.05 are checked.
 """
 import sys
 from pmpmtest import Checks, run, summary
 
 exe, np, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 c = Checks(f"incline_np{np}")
+ALGORITHMS = {"contact": ["-interface_type", "contact"],
+              "paper": ["-interface_type", "paper", "-pic", "1"]}
 
 
 def case(name, *extra):
     d = f"{out}/{name}"
-    run(exe, np, ["-options_file", "options/incline.opts"] + list(extra), d)
-    return summary(d)["results"]
+    _, text = run(exe, np, ["-options_file", "options/incline.opts"] + list(extra), d)
+    return summary(d), text
 
 
-free = case("free", "-interface_mu_top", "0")
-c.le("mu = 0: free slip, |a - g sin| / g sin", abs(free["acceleration"] / free["acceleration_exact"] - 1), 0.03)
-slide = case("slide", "-interface_mu_top", "0.3")
-c.le("mu = 0.3: |a - g (sin - mu cos)| / a_exact", abs(slide["acceleration"] / slide["acceleration_exact"] - 1), 0.03)
-for mu in ("0.1", "0.5"):  # measured 0.08 % and 0.26 %
-    r = case(f"slide_{mu}", "-interface_mu_top", mu)
-    c.le(f"mu = {mu}: |a - a_exact| / a_exact", abs(r["acceleration"] / r["acceleration_exact"] - 1), 0.03)
-stick = case("stick", "-interface_mu_top", "0.7")
-c.check("mu = 0.7 > tan 30: exact solution sticks", stick["sticks_exact"] is True)
-c.le("mu = 0.7: |a| / (g sin theta) after the transient", abs(stick["acceleration"]) / free["acceleration_exact"], 0.01)
-bonded = case("bonded", "-interface_type", "bonded")
-high = case("high_mu", "-interface_mu_top", "10")
-c.le("mu = 10 reproduces the bonded displacement (m)", abs(high["displacement"] - bonded["displacement"]), 1e-3)
-paper_stick = case("paper_stick", "-interface_type", "paper", "-interface_mu_top", "0.7")
-c.le("paper algorithm, mu = 0.7: |a| / (g sin theta)", abs(paper_stick["acceleration"]) / free["acceleration_exact"], 0.01)
-paper_free = case("paper_free", "-interface_type", "paper", "-interface_mu_top", "0")
-# measured 5.5 % low: the common normal velocity turns contact vibration into friction capacity
-c.le("paper algorithm, mu = 0: |a - g sin| / g sin (bound 8 %)", abs(paper_free["acceleration"] / paper_free["acceleration_exact"] - 1), 0.08)
+bonded = case("bonded", "-interface_type", "bonded")[0]["results"]
+for alg, opts in ALGORITHMS.items():
+    for mu in ("0", "0.1", "0.3", "0.5"):
+        s, _ = case(f"{alg}_slide_{mu}", *opts, "-interface_mu_top", mu)
+        r = s["results"]
+        c.le(f"{alg}, mu = {mu}: |a - g (sin - mu cos)| / a_exact",
+             abs(r["acceleration"] / r["acceleration_exact"] - 1), 0.03)
+    s, _ = case(f"{alg}_stick", *opts, "-interface_mu_top", "0.7")
+    r = s["results"]
+    c.check(f"{alg}, mu = 0.7 > tan 30: exact solution sticks", r["sticks_exact"] is True)
+    c.le(f"{alg}, mu = 0.7: |a| / (g sin theta) after the transient",
+         abs(r["acceleration"]) / r["acceleration_free_slip"], 0.01)
+    s, _ = case(f"{alg}_high_mu", *opts, "-interface_mu_top", "10")
+    c.le(f"{alg}, mu = 10 reproduces the bonded displacement (m)",
+         abs(s["results"]["displacement"] - bonded["displacement"]), 1e-3)
+    if alg == "paper":
+        c.le("paper with PIC: tensile / compressive normal impulse", s["interface"]["tension_ratio"], 0.05)
+s, text = case("paper_flip", "-interface_type", "paper", "-interface_mu_top", "0.3")
+c.ge("paper undamped: tensile / compressive normal impulse", s["interface"]["tension_ratio"], 0.05)
+c.check("paper undamped: the run warns that the interface carried tension",
+        "paper interface carried tension" in text)
 c.done()

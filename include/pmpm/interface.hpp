@@ -1,17 +1,22 @@
 // Frictional interfaces at the geomembrane (seed paper section 3.2; REFERENCE.md 5).
 //
 // Particles with colour 1 form body 1 (the geomembrane); all others body 2. Where a scene has an
-// interface, body 1's mass, momentum, force and colour gradient are summed on a second DMDA with
-// the grid's layout and partition. After the grid update, at nodes where both bodies have mass:
-//   n = g / |g|, g = sum_p V_p c_p grad S_ip   outward normal of body 1 (colour-gradient normals;
-//                                              g is minus the nodal gradient of the colour)
-//   d = v1 - v_cm,  d_n = d . n,  d_t = d - d_n n
+// interface, body 1's mass, momentum, force and the colour sums behind the normals are summed on a
+// second DMDA with the grid's layout and partition. After the grid update, at every node where
+// both bodies have mass and the normal is defined:
+//   n = g / |g|     outward normal of body 1: g is minus the colour gradient, by default the
+//                   paper's central differences of cell-average colour (InterfaceNormals)
+//   d = v1 - v_cm,  d_n = d . n,  d_t = d - d_n n      (d_n > 0: the bodies approach)
 //   paper:   the normal velocity is common (no interpenetration, no separation);
 //   contact: Bardenhagen et al. (2001): only where the bodies approach (d_n > 0); else free;
-//   Coulomb in velocity form: stick (v1 = v_cm) if |d_t| <= mu |d_n|, else slip with the
-//   tangential difference reduced by mu |d_n| (F dt = m dv applied to the force form);
+//   Coulomb in velocity form: stick (v1 = v_cm) if |d_t| <= mu max(d_n, 0), else slip with the
+//   tangential difference reduced by mu max(d_n, 0) (F dt = m dv applied to the force form:
+//   m1 d_n is the normal impulse, and only a pressing one gives friction);
 //   v2 follows from momentum conservation, m1 v1 + m2 v2 = m v_cm.
 // mu is chosen per face of body 1: mu_top where n points against gravity, mu_bottom elsewhere.
+// The paper's common normal also holds the bodies together where they pull apart: right while the
+// interface stays pressed (quasi-static loading), an over-grip when it rings in undamped dynamics;
+// the tensile normal impulse is counted so that runs can say which case they were.
 // Bonded (no interface) is the single velocity field of plain MPM: the cycle skips all of this.
 #pragma once
 #include "pmpm/grid.hpp"
@@ -23,10 +28,19 @@ enum class InterfaceType { Bonded = 0, Paper = 1, Contact = 2 };
 inline constexpr const char *InterfaceTypeNames[] = {"bonded",        "paper",      "contact",
                                                      "InterfaceType", "INTERFACE_", nullptr};
 
+// Where the normals come from. cells: the paper's scheme (section 3.2), the volume-weighted
+// average colour of each cell, differenced centrally between the four cells around a node; a node
+// is an interface node when that difference is non-zero. particles: sum_p V_p c_p grad S_ip,
+// the colour field's gradient through the shape functions (Bardenhagen's mass-gradient form).
+enum class InterfaceNormals { Cells = 0, Particles = 1 };
+inline constexpr const char *InterfaceNormalsNames[] = {"cells", "particles", "InterfaceNormals",
+                                                        "INTERFACE_NORMALS_", nullptr};
+
 struct InterfaceParams {
   InterfaceType type = InterfaceType::Bonded;
+  InterfaceNormals normals = InterfaceNormals::Cells;
   double mu_top = 0.5, mu_bottom = 0.5;
-  double min_share = 1e-3;     // smallest mass fraction of either body at a contact node
+  double min_share = 1e-12;    // a body with at most this share of a node's mass is bonded there
   double up[DIM] = {0.0, 1.0}; // against gravity
   double dt = 0, damping_alpha = 0;
   FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
@@ -35,6 +49,9 @@ struct InterfaceParams {
 struct InterfaceStats {
   double contact_nodes = 0; // nodes where both bodies meet
   double slip_nodes = 0;    // of those, nodes that slipped this step
+  // Normal impulse exchanged this step (N s per unit thickness), summed over contact nodes where
+  // it was applied: pressing the bodies together, and (paper type only) holding them together.
+  double compression = 0, tension = 0;
 };
 
 // On owned nodes: T is the total field after grid_update (v_cm, a_cm); B holds body 1's sums
@@ -42,6 +59,11 @@ struct InterfaceStats {
 // and T body 2's, wherever both bodies meet (elsewhere B = T).
 void interface_update(const GridView &T, const GridView &B, const InterfaceParams &prm,
                       InterfaceStats &stats);
+
+// The paper's normals, second half: C is the ghosted view of the cell sums of p2g_cell_colour
+// (cell (i, j) at node (i, j)), B the owned nodes of the body grid; B's FEXT slots receive minus
+// the central difference of the cell-average colour times h, which points out of body 1.
+void cell_colour_normals(const GridView &C, const GridView &B);
 
 // The second DMDA (same partition as the grid) that carries body 1.
 struct InterfaceGrid {

@@ -105,6 +105,7 @@ struct Simulation {
   InterfaceGrid iface_grid;              // body 1's field, only when an interface is on
   std::vector<PetscInt> iface_idx;       // body-1 (colour 1) particles (this rank)
   InterfaceStats iface_stats;            // last step's counts (global)
+  double iface_impulse[2] = {0, 0};      // normal impulse over the run: compression, tension
   std::vector<double> wave_modulus;      // per material
   std::vector<std::vector<int>> mat_idx; // particles of each material (this rank)
   std::vector<PetscInt> traction_idx;    // particles carrying a traction

@@ -26,12 +26,18 @@ template <class Shape>
 void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx = nullptr,
          PetscInt nidx = 0);
 
-// Interface normals: the nodal gradient of the volume-weighted colour, sum_p V_p c_p grad S_ip,
-// written over the FEXT slots of the whole view (the paper's central difference of cell-average
-// colour, section 3.2).
+// Interface normals (-interface_normals particles): sum_p V_p c_p grad S_ip / h over body 1, which
+// points out of it (S_i falls away from node i), written over the FEXT slots of the whole view.
+// In full cells it equals h times minus the central difference of the cell-average colour at
+// the node; it differs in part-filled cells and reaches every node body 1's blocks touch.
 template <class Shape>
 void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt nidx,
                          const GridView &G);
+
+// The paper's normals (section 3.2), first half: per cell, the volume of colour and the volume of
+// all particles whose centres lie in it, summed over every particle (both bodies), into the FEXT
+// slots of the cell's lower-left node. interface.hpp's cell_colour_normals finishes them.
+void p2g_cell_colour(const ParticleView &P, const GridView &G);
 
 // Surface tractions act at the particle's face point x + tface; linear hats there give the
 // consistent nodal load of a traction on the body's face. idx lists the loaded particles.
