@@ -327,13 +327,14 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
                              nullptr, sim.iface.mu_top, &sim.iface.mu_top, nullptr));
   PetscCall(PetscOptionsReal("-mu_bottom", "Friction coefficient on the body's lower face, >= 0",
                              nullptr, sim.iface.mu_bottom, &sim.iface.mu_bottom, nullptr));
-  PetscCall(PetscOptionsReal("-min_share",
-                             "A body with at most this fraction of a node's mass is bonded "
-                             "there, 0 <= s < 0.5 (the default only screens round-off)",
-                             nullptr, sim.iface.min_share, &sim.iface.min_share, nullptr));
+  PetscCall(PetscOptionsReal("-tail_share",
+                             "Below this share of a node's mass a body takes the common "
+                             "acceleration there and keeps its relative velocity, 0 <= s < 0.5",
+                             nullptr, sim.iface.tail_share, &sim.iface.tail_share, nullptr));
   PetscOptionsEnd();
-  PetscCheck(sim.iface.min_share >= 0 && sim.iface.min_share < 0.5, sim.comm,
-             PETSC_ERR_ARG_OUTOFRANGE, "-interface_min_share must be in [0, 0.5)");
+  PetscCheck(sim.iface.tail_share >= 0 && sim.iface.tail_share < 0.5, sim.comm,
+             PETSC_ERR_ARG_OUTOFRANGE, "-interface_tail_share must be in [0, 0.5) (got %g)",
+             sim.iface.tail_share);
   PetscCheck(sim.iface.mu_top >= 0 && sim.iface.mu_bottom >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-interface_mu_top and -interface_mu_bottom must be >= 0");
   PetscCheck(!(sim.set.musl && sim.iface.type != InterfaceType::Bonded), sim.comm, PETSC_ERR_SUP,

@@ -23,6 +23,10 @@ cases = [
     ("ppc out of range", ["-options_file", "options/bar.opts", "-ppc", "0"], "-ppc"),
     ("missing modulus", ["-scene", "column", "-cell_size", "0.125", "-mat_column_nu", "0.3",
                          "-mat_column_gamma", "1"], "-mat_column_E"),
+    ("interface tail share out of range", ["-options_file", "options/incline.opts",
+                                           "-interface_tail_share", "0.7"], "-interface_tail_share"),
+    ("unknown interface normals", ["-options_file", "options/incline.opts",
+                                   "-interface_normals", "mass"], "-interface_normals"),
 ]
 for what, args, needle in cases:
     d = f"{out}/{what.replace(' ', '_')}"

@@ -40,7 +40,8 @@ struct InterfaceParams {
   InterfaceType type = InterfaceType::Bonded;
   InterfaceNormals normals = InterfaceNormals::Cells;
   double mu_top = 0.5, mu_bottom = 0.5;
-  double min_share = 1e-12;    // a body with at most this share of a node's mass is bonded there
+  double tail_share = 1e-3;    // below this share of a node's mass a body takes the common
+                               // acceleration there (its own f/m is unreliable)
   double up[DIM] = {0.0, 1.0}; // against gravity
   double dt = 0, damping_alpha = 0;
   FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};

@@ -6,7 +6,8 @@
 //     contact type releases separating bodies; both conserve momentum, and the friction impulse
 //     is min(mu N, the impulse that sticks), with N the pressing normal impulse (Coulomb);
 //     mu = 0 leaves the tangential velocities alone, a large mu sticks; normal impulses are
-//     counted as compression or tension; a node without a normal or without body 2 is bonded.
+//     counted as compression or tension; a body with a tail share takes the common acceleration;
+//     a node without a normal or without body 2 is bonded.
 #include "check.hpp"
 #include "pmpm/interface.hpp"
 #include <algorithm>
@@ -227,6 +228,20 @@ void test_limits() {
     const NodeResult s = run_node(c, type, 1e6, 1e-3);
     CHECK_CLOSE(s.v1[0], c.vcm[0], 1e-14);
     CHECK_CLOSE(s.v2[0], c.vcm[0], 1e-14);
+  }
+  // a tail share (below 1e-3): that body takes the common acceleration, whatever its own force,
+  // and with mu = 0 keeps its tangential velocity relative to the other body
+  for (int which = 0; which < 2; ++which) {
+    NodeCase b = c;
+    b.m1 = which == 0 ? 1e-5 * b.m : b.m * (1 - 1e-5);
+    for (int d = 0; d < DIM; ++d) b.p1[d] = b.m1 * (d == 0 ? 0.9 : 0.0); // body 1 at (0.9, 0)
+    const double m2 = b.m - b.m1;
+    const NodeResult o = run_node(b, InterfaceType::Contact, 0.0, 1e-3);
+    const double v2old = (b.m * (b.vcm[0] - 1e-3 * b.acm[0]) - b.m1 * 0.9) / m2;
+    if (which == 0)
+      CHECK_CLOSE(o.v1[0], 0.9 + 1e-3 * b.acm[0], 1e-12);
+    else
+      CHECK_CLOSE(o.v2[0], v2old + 1e-3 * b.acm[0], 1e-9);
   }
   // no normal, or no body 2: the node keeps the single field
   for (int which = 0; which < 2; ++which) {
