@@ -47,7 +47,7 @@ void interface_update(const GridView &T, const GridView &B, const InterfaceParam
       // to 1e-8) has an unreliable own acceleration f/m there: it takes the common acceleration
       // and keeps its velocity relative to the other body. Bonding such nodes instead glued the
       // sliding block on the incline (4.7 % slow at mu = 0 for shares below 1e-3, 1 % below
-      // 1e-6); their own f/m made the friction landfill relax 3.9x slower (7142 steps).
+      // 1e-6); their own f/m made the friction landfill relax 3.9x slower (7142 steps, not 1823).
       if (m1 < prm.tail_share * m) {
         for (int d = 0; d < DIM; ++d) v1[d] = held[d] ? 0.0 : v1old[d] + dt * acm[d];
       } else if (m2 < prm.tail_share * m) { // v1 such that body 2 takes the common acceleration

@@ -3,7 +3,8 @@
 // Particles with colour 1 form body 1 (the geomembrane); all others body 2. Where a scene has an
 // interface, body 1's mass, momentum, force and the colour sums behind the normals are summed on a
 // second DMDA with the grid's layout and partition. After the grid update, at every node where
-// both bodies have mass and the normal is defined:
+// both bodies have mass and the normal is defined (a body with a tail share of the node's mass
+// takes the common acceleration there, see tail_share):
 //   n = g / |g|     outward normal of body 1: g is minus the colour gradient, by default the
 //                   paper's central differences of cell-average colour (InterfaceNormals)
 //   d = v1 - v_cm,  d_n = d . n,  d_t = d - d_n n      (d_n > 0: the bodies approach)
@@ -28,10 +29,11 @@ enum class InterfaceType { Bonded = 0, Paper = 1, Contact = 2 };
 inline constexpr const char *InterfaceTypeNames[] = {"bonded",        "paper",      "contact",
                                                      "InterfaceType", "INTERFACE_", nullptr};
 
-// Where the normals come from. cells: the paper's scheme (section 3.2), the volume-weighted
-// average colour of each cell, differenced centrally between the four cells around a node; a node
-// is an interface node when that difference is non-zero. particles: sum_p V_p c_p grad S_ip,
-// the colour field's gradient through the shape functions (Bardenhagen's mass-gradient form).
+// Where the normals come from. cells: the paper's scheme (section 3.2): the volume-weighted
+// average colour of each cell, its gradient at the cell centres by central differences between
+// neighbouring cells, mapped to a node as the mean over its four cells; a node is an interface
+// node where that is non-zero. particles: sum_p V_p c_p grad S_ip / h, the colour field's
+// gradient through the shape functions (Bardenhagen's mass-gradient form).
 enum class InterfaceNormals { Cells = 0, Particles = 1 };
 inline constexpr const char *InterfaceNormalsNames[] = {"cells", "particles", "InterfaceNormals",
                                                         "INTERFACE_NORMALS_", nullptr};
