@@ -43,6 +43,8 @@ void interface_update(const GridView &T, const GridView &B, const InterfaceParam
         }
         continue;
       }
+      double v2old[DIM]; // body 2's old velocity from the old total and body-1 momenta
+      for (int d = 0; d < DIM; ++d) v2old[d] = (m * (vcm[d] - dt * acm[d]) - m1 * v1old[d]) / m2;
       // A body with a tail share (uGIMP's blocks reach the next row of nodes with shares down
       // to 1e-8) has an unreliable own acceleration f/m there: it takes the common acceleration
       // and keeps its velocity relative to the other body. Bonding such nodes instead glued the
@@ -51,10 +53,8 @@ void interface_update(const GridView &T, const GridView &B, const InterfaceParam
       if (m1 < prm.tail_share * m) {
         for (int d = 0; d < DIM; ++d) v1[d] = held[d] ? 0.0 : v1old[d] + dt * acm[d];
       } else if (m2 < prm.tail_share * m) { // v1 such that body 2 takes the common acceleration
-        for (int d = 0; d < DIM; ++d) {
-          const double v2old = (m * (vcm[d] - dt * acm[d]) - m1 * v1old[d]) / m2;
-          v1[d] = held[d] ? 0.0 : (m * vcm[d] - m2 * (v2old + dt * acm[d])) / m1;
-        }
+        for (int d = 0; d < DIM; ++d)
+          v1[d] = held[d] ? 0.0 : (m * vcm[d] - m2 * (v2old[d] + dt * acm[d])) / m1;
       }
       st.contact_nodes += 1;
       const double n[DIM] = {gx / gn, gy / gn};
@@ -78,13 +78,10 @@ void interface_update(const GridView &T, const GridView &B, const InterfaceParam
       for (int d = 0; d < DIM; ++d) {
         const double v1n = held[d] ? 0.0 : vcm[d] + dv[d];
         const double v2n = held[d] ? 0.0 : vcm[d] - m1 / m2 * dv[d];
-        // body 2's old velocity from the old total and body-1 momenta
-        const double vcm_old = vcm[d] - dt * acm[d];
-        const double v2old = (m * vcm_old - m1 * v1old[d]) / m2;
         b[GridDof::P + d] = v1n;
         b[GridDof::F + d] = (v1n - v1old[d]) / dt;
         t[GridDof::P + d] = v2n;
-        t[GridDof::F + d] = (v2n - v2old) / dt;
+        t[GridDof::F + d] = (v2n - v2old[d]) / dt;
       }
     }
 }
