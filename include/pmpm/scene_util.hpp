@@ -28,6 +28,11 @@ PetscErrorCode CompareVertical(Simulation &sim, const std::function<double(doubl
                                const std::function<double(double)> &u_y,
                                const std::vector<double> &rows, VerticalComparison &out);
 
+// Uniaxial strain: the exact volume ratio J = dy/dY under vertical stress sig (Pa, tension
+// positive) for the material's law: exp(sig / M) for the hypoelastic Jaumann update, the root of
+// lambda ln J + mu (J^2 - 1) = sig J for neo-Hookean (Newton from the hypoelastic value).
+double UniaxialStrainJ(const MaterialEntry &m, double sig);
+
 // Sum of values over all ranks.
 PetscErrorCode SumAll(MPI_Comm comm, double *v, int n);
 

@@ -11,7 +11,6 @@
 #include "pmpm/scene_util.hpp"
 #include <cmath>
 #include <algorithm>
-#include <cstring>
 #include <vector>
 
 namespace pmpm {
@@ -19,19 +18,6 @@ namespace pmpm {
 class ColumnScene final : public Scene {
   double H_ = 1.0, W_ = 0;
 
-  double J_of_stress(const MaterialEntry &m, double sig) const {
-    const ElasticConstants &c = m.el;
-    if (std::strcmp(m.model->model(), "neo_hookean") != 0) return std::exp(sig / c.M());
-    double J = std::exp(sig / c.M());
-    for (int it = 0; it < 60; ++it) { // Newton on g(J) = lambda ln J + mu (J^2 - 1) - sig J
-      const double g = c.lambda() * std::log(J) + c.G() * (J * J - 1) - sig * J;
-      const double dg = c.lambda() / J + 2 * c.G() * J - sig;
-      const double step = g / dg;
-      J -= step;
-      if (std::fabs(step) < 1e-15 * J) break;
-    }
-    return J;
-  }
   // Exact y(Y) = int_0^Y J dY tabulated once (Simpson per panel, 4096 panels), then read by
   // cubic Hermite interpolation with dy/dY = J: error far below 1e-10 of the settlement.
   static constexpr int kPanels = 4096;
@@ -40,9 +26,9 @@ class ColumnScene final : public Scene {
     const double dY = H_ / kPanels;
     ytab_.assign(kPanels + 1, 0.0);
     jtab_.assign(kPanels + 1, 0.0);
-    for (int k = 0; k <= kPanels; ++k) jtab_[k] = J_of_stress(m, sigma_exact(k * dY));
+    for (int k = 0; k <= kPanels; ++k) jtab_[k] = UniaxialStrainJ(m, sigma_exact(k * dY));
     for (int k = 0; k < kPanels; ++k) {
-      const double jm = J_of_stress(m, sigma_exact((k + 0.5) * dY));
+      const double jm = UniaxialStrainJ(m, sigma_exact((k + 0.5) * dY));
       ytab_[k + 1] = ytab_[k] + dY / 6.0 * (jtab_[k] + 4.0 * jm + jtab_[k + 1]);
     }
   }

@@ -11,26 +11,12 @@
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
 #include <cmath>
-#include <cstring>
 
 namespace pmpm {
 
 class LayersScene final : public Scene {
   double Hb_ = 0.5, Ht_ = 0.5, W_ = 0;
 
-  static double J_of_stress(const MaterialEntry &m, double sig) {
-    const ElasticConstants &c = m.el;
-    double J = std::exp(sig / c.M());
-    if (std::strcmp(m.model->model(), "neo_hookean") != 0) return J;
-    for (int it = 0; it < 60; ++it) { // Newton on g(J) = lambda ln J + mu (J^2 - 1) - sig J
-      const double g = c.lambda() * std::log(J) + c.G() * (J * J - 1) - sig * J;
-      const double dg = c.lambda() / J + 2 * c.G() * J - sig;
-      const double step = g / dg;
-      J -= step;
-      if (std::fabs(step) < 1e-15 * J) break;
-    }
-    return J;
-  }
   double stress_exact(const Simulation &sim, double Y) const {
     const double gb = sim.mats[0].gamma, gt = sim.mats[1].gamma, H = Hb_ + Ht_;
     return Y >= Hb_ ? -gt * (H - Y) : -gt * Ht_ - gb * (Hb_ - Y);
@@ -42,7 +28,7 @@ class LayersScene final : public Scene {
     double s = 0;
     for (int k = 0; k <= n; ++k) {
       const double w = (k == 0 || k == n) ? 1 : (k % 2 ? 4 : 2);
-      s += w * (J_of_stress(m, stress_exact(sim, a + k * dY)) - 1.0);
+      s += w * (UniaxialStrainJ(m, stress_exact(sim, a + k * dY)) - 1.0);
     }
     return s * dY / 3.0;
   }

@@ -1,5 +1,6 @@
 #include "pmpm/scene_util.hpp"
 #include <cmath>
+#include <cstring>
 #include <memory>
 
 namespace pmpm {
@@ -78,6 +79,20 @@ PetscErrorCode CompareVertical(Simulation &sim, const std::function<double(doubl
     out.row_u_exact[r] = s[5 + 3 * r] / s[6 + 3 * r];
   }
   PetscFunctionReturn(0);
+}
+
+double UniaxialStrainJ(const MaterialEntry &m, double sig) {
+  const ElasticConstants &c = m.el;
+  double J = std::exp(sig / c.M());
+  if (std::strcmp(m.model->model(), "neo_hookean") != 0) return J;
+  for (int it = 0; it < 60; ++it) { // Newton on g(J) = lambda ln J + mu (J^2 - 1) - sig J
+    const double g = c.lambda() * std::log(J) + c.G() * (J * J - 1) - sig * J;
+    const double dg = c.lambda() / J + 2 * c.G() * J - sig;
+    const double step = g / dg;
+    J -= step;
+    if (std::fabs(step) < 1e-15 * J) break;
+  }
+  return J;
 }
 
 PetscErrorCode SumAll(MPI_Comm comm, double *v, int n) {
