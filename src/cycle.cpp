@@ -7,7 +7,8 @@
 namespace pmpm {
 
 namespace {
-PetscLogEvent ev_p2g, ev_l2g, ev_grid, ev_g2l, ev_g2p, ev_musl, ev_stress, ev_migrate, ev_iface;
+PetscLogEvent ev_p2g, ev_l2g, ev_grid, ev_g2l, ev_g2p, ev_musl, ev_stress, ev_migrate, ev_iface,
+    ev_chain, ev_contact;
 
 template <class Shape>
 PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport &rep) {
@@ -24,6 +25,15 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   if (!sim.traction_idx.empty()) p2g_traction(P, sim.traction_idx, load.factor, G);
   PetscCall(GridRestoreLocal(g, G));
   PetscCall(PetscLogEventEnd(ev_p2g, 0, 0, 0, 0));
+  // 1a. Membrane chains: their points' mass, momentum, axial and external forces into their own
+  //     body's block, and their geometry (normals, length) into their slots.
+  if (!sim.chains.empty()) {
+    PetscCall(PetscLogEventBegin(ev_chain, 0, 0, 0, 0));
+    PetscCall(GridGetLocal(g, false, G));
+    for (const Chain &c : sim.chains) p2g_chain(c, load, G, g);
+    PetscCall(GridRestoreLocal(g, G));
+    PetscCall(PetscLogEventEnd(ev_chain, 0, 0, 0, 0));
+  }
   // 1b. Interface: body 1's own mass, momentum, force, and its colour gradient (the normals).
   Grid &gb = sim.iface_grid.body;
   const bool iface = sim.iface_grid.active;
@@ -70,6 +80,14 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   PetscCall(GridGetGlobal(g, G));
   grid_update(G, gp, rep.grid);
   PetscCall(PetscLogEventEnd(ev_grid, 0, 0, 0, 0));
+  // 3a. Stacked bodies at the chains' nodes: no interpenetration, separation, friction per face.
+  if (!sim.chains.empty()) {
+    PetscCall(PetscLogEventBegin(ev_contact, 0, 0, 0, 0));
+    ContactParams cp = sim.contact;
+    cp.dt = dt;
+    contact_bodies(G, sim.chains, cp, rep.contact);
+    PetscCall(PetscLogEventEnd(ev_contact, 0, 0, 0, 0));
+  }
   // 3b. Interface: friction-limited velocities of body 1 and body 2 where they meet.
   if (iface) {
     PetscCall(PetscLogEventBegin(ev_iface, 0, 0, 0, 0));
@@ -125,6 +143,36 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     PetscCall(PetscLogEventEnd(ev_musl, 0, 0, 0, 0));
   }
   if (iface) PetscCall(GridRestoreLocal(gb, Gb));
+  // 5a. Chain points: the owner of each point's cell moves it; one allreduce shares them all.
+  if (!sim.chains.empty()) {
+    PetscCall(PetscLogEventBegin(ev_chain, 0, 0, 0, 0));
+    PetscCall(GridGetLocal(g, false, G));
+    std::vector<double> &buf = sim.chain_buf, part;
+    buf.clear();
+    ChainG2PStats cs;
+    for (Chain &c : sim.chains) {
+      g2p_chain(c, G, g, pp, cs);
+      chain_pack(c, part);
+      buf.insert(buf.end(), part.begin(), part.end());
+    }
+    PetscCall(GridRestoreLocal(g, G));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()),
+                               MPI_DOUBLE, MPI_SUM, sim.comm));
+    size_t off = 0;
+    for (Chain &c : sim.chains) {
+      const size_t w = static_cast<size_t>(c.n) * (2 * DIM + 5);
+      part.assign(buf.begin() + off, buf.begin() + off + w);
+      off += w;
+      const int owners = chain_owner_count(part, c.n);
+      PetscCheck(owners == c.n, sim.comm, PETSC_ERR_NOT_CONVERGED,
+                 "Instability at step %" PetscInt_FMT ": chain %s has %d of its %d points off the "
+                 "grid. Enlarge the grid or reduce -cfl (now %g).",
+                 sim.run.step, c.name.c_str(), c.n - owners, c.n, sim.set.cfl);
+      chain_unpack(c, part);
+      chain_update_tension(c);
+    }
+    PetscCall(PetscLogEventEnd(ev_chain, 0, 0, 0, 0));
+  }
 
   // 6. Stress update, one batch per material (eq. 6).
   PetscCall(PetscLogEventBegin(ev_stress, 0, 0, 0, 0));
@@ -143,6 +191,48 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscFunctionReturn(0);
 }
+// The chains' share of the step's report: their contact sums over ranks; their kinetic energy,
+// speeds and load power from the points every rank holds (added once, not per rank).
+PetscErrorCode ChainReductions(Simulation &sim, const Load &load, StepReport &rep) {
+  ContactStats &cs = rep.contact;
+  PetscFunctionBeginUser;
+  std::vector<double> sm = {cs.contact_nodes, cs.slip_nodes, cs.separated_nodes, cs.compression,
+                            cs.tension};
+  cs.friction.resize(sim.chains.size(), 0.0);
+  sm.insert(sm.end(), cs.friction.begin(), cs.friction.end());
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm.data(), static_cast<int>(sm.size()), MPI_DOUBLE,
+                             MPI_SUM, sim.comm));
+  cs.contact_nodes = sm[0];
+  cs.slip_nodes = sm[1];
+  cs.separated_nodes = sm[2];
+  cs.compression = sm[3];
+  cs.tension = sm[4];
+  for (size_t k = 0; k < sim.chains.size(); ++k) {
+    cs.friction[k] = sm[5 + k];
+    sim.chains[k].friction_force = sm[5 + k];
+  }
+  sim.contact_stats = cs;
+  sim.contact_impulse[0] += cs.compression;
+  sim.contact_impulse[1] += cs.tension;
+  double ke = 0, v2 = 0, c = 0, pw = 0;
+  for (const Chain &ch : sim.chains) {
+    c = std::fmax(c, ch.wave_speed());
+    for (int i = 0; i < ch.n; ++i) {
+      const double *v = &ch.v[i * DIM], s2 = v[0] * v[0] + v[1] * v[1];
+      ke += 0.5 * ch.line_mass * ch.length[i] * s2;
+      v2 = std::fmax(v2, s2);
+      pw += ch.line_weight * ch.length[i] * (load.gdir[0] * v[0] + load.gdir[1] * v[1]);
+    }
+    const double *v = &ch.v[(ch.n - 1) * DIM];
+    pw += ch.end_force[0] * v[0] + ch.end_force[1] * v[1];
+  }
+  rep.g2p.kinetic += ke;
+  rep.g2p.max_c = std::fmax(rep.g2p.max_c, c);
+  rep.g2p.max_v = std::fmax(rep.g2p.max_v, std::sqrt(v2));
+  rep.g2p.max_speed = rep.g2p.max_c + rep.g2p.max_v;
+  if (sim.rank == 0) rep.g2p.weight_power += pw; // the budget sums its local parts over ranks
+  PetscFunctionReturn(0);
+}
 } // namespace
 
 PetscErrorCode LogRegister() {
@@ -156,6 +246,8 @@ PetscErrorCode LogRegister() {
   PetscCall(PetscLogEventRegister("G2P", cls, &ev_g2p));
   PetscCall(PetscLogEventRegister("MUSLRemap", cls, &ev_musl));
   PetscCall(PetscLogEventRegister("Interface", cls, &ev_iface));
+  PetscCall(PetscLogEventRegister("Chain", cls, &ev_chain));
+  PetscCall(PetscLogEventRegister("Contact", cls, &ev_contact));
   PetscCall(PetscLogEventRegister("StressUpdate", cls, &ev_stress));
   PetscCall(PetscLogEventRegister("Migrate", cls, &ev_migrate));
   PetscFunctionReturn(0);
@@ -196,6 +288,8 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &re
   rep.grid.sum_ext = sm[0];
   rep.grid.n_ext = sm[1];
   rep.g2p.kinetic = sm[2];
+
+  if (!sim.chains.empty()) PetscCall(ChainReductions(sim, load, rep));
 
   // A particle off the grid, with J <= 0, or non-finite: stop with where, when and what to do.
   if (mx[3] > 0) {
@@ -267,6 +361,7 @@ PetscErrorCode InitialWaveSpeed(Simulation &sim, double *max_speed) {
   for (PetscInt p = 0; p < P.n; ++p)
     c = std::fmax(c, std::sqrt(sim.wave_modulus[P.mat[p]] * P.vol[p] / P.mass[p]));
   PetscCall(ParticlesRestoreView(sim.parts, P));
+  for (const Chain &ch : sim.chains) c = std::fmax(c, ch.wave_speed());
   PetscCallMPI(MPI_Allreduce(&c, max_speed, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
   PetscFunctionReturn(0);
 }

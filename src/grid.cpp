@@ -3,9 +3,11 @@
 namespace pmpm {
 
 PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[DIM],
-                          const PetscInt ncell[DIM], Grid &g) {
+                          const PetscInt ncell[DIM], int nbody, int extra, Grid &g) {
   PetscFunctionBeginUser;
   g.h = h;
+  g.nbody = nbody;
+  g.nd = nbody * GridDof::NDOF + extra;
   for (int d = 0; d < DIM; ++d) {
     g.origin[d] = origin[d];
     g.ncell[d] = ncell[d];
@@ -13,7 +15,7 @@ PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[DIM],
   // GHOSTED boundaries give every rank two ghost layers outside the box too, so a particle at the
   // box face can write its (zero-weight) outer stencil nodes without a bounds test.
   PetscCall(DMDACreate2d(comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX,
-                         ncell[0] + 1, ncell[1] + 1, PETSC_DECIDE, PETSC_DECIDE, GridDof::NDOF, 2,
+                         ncell[0] + 1, ncell[1] + 1, PETSC_DECIDE, PETSC_DECIDE, g.nd, 2,
                          nullptr, nullptr, &g.da));
   PetscCall(DMSetFromOptions(g.da));
   PetscCall(DMSetUp(g.da));
@@ -50,6 +52,8 @@ void SetView(const Grid &g, bool ghosted, GridView &v) {
     v.gs[d] = ghosted ? g.gs[d] : g.s[d];
     v.gm[d] = ghosted ? g.gm[d] : g.m[d];
   }
+  v.nbody = g.nbody;
+  v.nd = g.nd;
 }
 } // namespace
 
@@ -101,8 +105,8 @@ PetscErrorCode GridGlobalToLocal(Grid &g) {
   for (PetscInt j = g.gs[1]; j < g.gs[1] + g.gm[1]; ++j)
     for (PetscInt i = g.gs[0]; i < g.gs[0] + g.gm[0]; ++i) {
       if (i >= 0 && i <= g.ncell[0] && j >= 0 && j <= g.ncell[1]) continue;
-      double *node = a + ((j - g.gs[1]) * g.gm[0] + (i - g.gs[0])) * GridDof::NDOF;
-      for (int k = 0; k < GridDof::NDOF; ++k) node[k] = 0.0;
+      double *node = a + ((j - g.gs[1]) * g.gm[0] + (i - g.gs[0])) * g.nd;
+      for (int k = 0; k < g.nd; ++k) node[k] = 0.0;
     }
   PetscCall(VecRestoreArray(g.local, &a));
   PetscFunctionReturn(0);

@@ -40,6 +40,7 @@ static PetscErrorCode Run() {
   PetscCall(OutputPrepareDirectory(sim));
   PetscCall(OutputParticles(sim, "particles.h5"));
   PetscCall(OutputSeriesFinish(sim));
+  PetscCall(OutputChains(sim));
   PetscCall(sim.scene->write_files(sim));
   PetscCall(OutputSummary(sim, results));
   PetscCall(PetscLogStagePop());

@@ -224,6 +224,7 @@ PetscErrorCode OutputSummary(Simulation &sim, const std::string &results) {
               json_kv("normal_impulse_tension", I[1]) + sep +
               json_kv("tension_ratio", I[0] > 0 ? I[1] / I[0] : 0.0) + "\n  },\n  ";
     }
+    iface += ChainSummaryJson(sim);
     std::fprintf(f,
                  "{\n  \"scene\": \"%s\",\n  \"ranks\": %d,\n  \"particles\": %d,\n"
                  "  \"cells\": [%d, %d],\n  %s,\n  \"ppc\": %d,\n  \"shape\": \"%s\",\n"

@@ -16,6 +16,7 @@ constexpr FieldSpec kFields[] = {
     {"weight", 1, PETSC_REAL},       {"traction", DIM, PETSC_REAL}, {"tface", DIM, PETSC_REAL},
     {"stress", NSTRESS, PETSC_REAL}, {"F", DIM *DIM, PETSC_REAL},   {"eps_p", 1, PETSC_REAL},
     {"colour", 1, PETSC_REAL},       {"mat", 1, PETSC_INT},         {"pid", 1, PETSC_INT},
+    {"body", 1, PETSC_INT},
 };
 constexpr PetscInt kBuffer = 1000; // DMSwarm reallocation slack (see PETSC_NOTES.md)
 } // namespace
@@ -52,6 +53,7 @@ PetscErrorCode ParticlesGetView(Particles &P, ParticleView &v) {
     PetscCall(DMSwarmGetField(P.sw, kFields[k].name, nullptr, nullptr, (void **)reals[k]));
   PetscCall(DMSwarmGetField(P.sw, "mat", nullptr, nullptr, (void **)&v.mat));
   PetscCall(DMSwarmGetField(P.sw, "pid", nullptr, nullptr, (void **)&v.pid));
+  PetscCall(DMSwarmGetField(P.sw, "body", nullptr, nullptr, (void **)&v.body));
   PetscFunctionReturn(0);
 }
 
@@ -64,6 +66,7 @@ PetscErrorCode ParticlesRestoreView(Particles &P, ParticleView &v) {
     PetscCall(DMSwarmRestoreField(P.sw, kFields[k].name, nullptr, nullptr, (void **)reals[k]));
   PetscCall(DMSwarmRestoreField(P.sw, "mat", nullptr, nullptr, (void **)&v.mat));
   PetscCall(DMSwarmRestoreField(P.sw, "pid", nullptr, nullptr, (void **)&v.pid));
+  PetscCall(DMSwarmRestoreField(P.sw, "body", nullptr, nullptr, (void **)&v.body));
   v = ParticleView{};
   PetscFunctionReturn(0);
 }
@@ -95,6 +98,7 @@ PetscErrorCode ParticlesAdd(Particles &P, const std::vector<ParticleInit> &init)
     v.colour[p] = q.colour;
     v.mat[p] = q.mat;
     v.pid[p] = q.pid;
+    v.body[p] = q.body;
   }
   PetscCall(ParticlesRestoreView(P, v));
   PetscFunctionReturn(0);

@@ -3,6 +3,7 @@
 // the unbalanced-force ratio max|f_int + f_ext| / mean|f_ext|.
 #include "pmpm/cycle.hpp"
 #include "pmpm/output.hpp"
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -16,6 +17,7 @@ PetscErrorCode ZeroParticleVelocities(Simulation &sim) {
   PetscCall(ParticlesGetView(sim.parts, P));
   for (PetscInt q = 0; q < P.n * DIM; ++q) P.v[q] = 0.0;
   PetscCall(ParticlesRestoreView(sim.parts, P));
+  for (Chain &c : sim.chains) std::fill(c.v.begin(), c.v.end(), 0.0);
   PetscFunctionReturn(0);
 }
 
@@ -66,6 +68,8 @@ double ElasticEnergy(const Simulation &sim, const ParticleView &P) {
     const double cross = s[0] * s[1] + s[1] * s[2] + s[2] * s[0];
     u += P.vol[p] * ((sq - 2 * c.nu * cross) + 2 * (1 + c.nu) * s[3] * s[3]) / (2 * c.E);
   }
+  if (sim.rank == 0) // every rank holds the chains: count them once
+    for (const Chain &ch : sim.chains) u += chain_elastic_energy(ch);
   return u;
 }
 
@@ -80,6 +84,9 @@ PetscErrorCode EnergyBudgetInit(Simulation &sim, EnergyBudget &eb) {
     s[1] += sim.wave_modulus[P.mat[p]] * P.vol[p];
   }
   PetscCall(ParticlesRestoreView(sim.parts, P));
+  if (sim.rank == 0)
+    for (const Chain &c : sim.chains)
+      for (int k = 0; k + 1 < c.n; ++k) s[1] += c.law.J * c.l0[k];
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 2, MPI_DOUBLE, MPI_SUM, sim.comm));
   eb = EnergyBudget{};
   eb.e0 = s[0];

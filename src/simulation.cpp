@@ -18,7 +18,7 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscInt ng = DIM;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
-  PetscCall(PetscOptionsString("-scene", "Scene: bar, column, landfill, incline, layers, block",
+  PetscCall(PetscOptionsString("-scene", "Scene: bar, column, landfill, incline, layers, block, catenary, pullout, trench",
                                nullptr, scene, scene, sizeof(scene), &set));
   PetscCheck(set, comm, PETSC_ERR_USER_INPUT,
              "No scene given: pass -options_file options/<scene>.opts or -scene NAME "
@@ -270,6 +270,29 @@ PetscErrorCode ApplyFaceTractions(Simulation &sim, std::vector<ParticleInit> &in
   }
   PetscFunctionReturn(0);
 }
+// With chains, a particle's body is 2 k, k the number of chains below its centre (a chain's
+// height at x by linear interpolation of its points, held level beyond its ends).
+void AssignBodies(const Simulation &sim, std::vector<ParticleInit> &init) {
+  for (auto &q : init) {
+    int below = 0;
+    for (const Chain &c : sim.chains) {
+      const double *X = c.x.data();
+      double y;
+      if (q.x[0] <= X[0])
+        y = X[1];
+      else if (q.x[0] >= X[(c.n - 1) * DIM])
+        y = X[(c.n - 1) * DIM + 1];
+      else {
+        int k = 0;
+        while (X[(k + 1) * DIM] < q.x[0]) ++k;
+        const double r = (q.x[0] - X[k * DIM]) / (X[(k + 1) * DIM] - X[k * DIM]);
+        y = X[k * DIM + 1] + r * (X[(k + 1) * DIM + 1] - X[k * DIM + 1]);
+      }
+      below += q.x[1] > y;
+    }
+    q.body = 2 * below;
+  }
+}
 } // namespace
 
 PetscErrorCode SimulationSetup(Simulation &sim) {
@@ -279,11 +302,13 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(SettingsFromOptions(sim.comm, sim.set));
   sim.scene = make_scene(sim.set.scene);
   PetscCheck(sim.scene, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-scene %s is unknown; allowed: bar, column, landfill, incline, layers, block",
+             "-scene %s is unknown; allowed: bar, column, landfill, incline, layers, block, "
+             "catenary, pullout, trench",
              sim.set.scene.c_str());
   PetscCall(sim.scene->setup(sim));
   PetscCall(BoundaryFromOptions(sim));
-  PetscCheck(!sim.mats.empty(), sim.comm, PETSC_ERR_PLIB, "scene defined no material");
+  PetscCheck(!sim.mats.empty() || !sim.chain_specs.empty(), sim.comm, PETSC_ERR_PLIB,
+             "scene defined no material");
 
   // Inertia: either the given densities, or one wave speed for all materials (the fastest
   // physical one), which equalises the relaxation rate of stiff and soft layers. Loads come from
@@ -307,13 +332,15 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   sim.mat_idx.assign(sim.mats.size(), {});
 
   // Interface between colour-1 particles and the rest (skipped entirely when bonded).
+  PetscBool type_set = PETSC_FALSE;
   PetscOptionsBegin(sim.comm, "interface_", "Interface of the colour-1 body (geomembrane)",
                     nullptr);
   PetscCall(PetscOptionsEnum("-type",
                              "bonded (one velocity field), paper (Coulomb friction-slip of "
-                             "section 3.2), contact (Bardenhagen multi-velocity friction)",
+                             "section 3.2), contact (Bardenhagen multi-velocity friction); "
+                             "for a chain, the default of -chain_<name>_interface (contact)",
                              nullptr, InterfaceTypeNames, (PetscEnum)sim.iface.type,
-                             (PetscEnum *)&sim.iface.type, nullptr));
+                             (PetscEnum *)&sim.iface.type, &type_set));
   // each type's own normals unless asked otherwise: the paper's cells, Bardenhagen's gradient
   sim.iface.normals = sim.iface.type == InterfaceType::Contact ? InterfaceNormals::Particles
                                                                : InterfaceNormals::Cells;
@@ -343,13 +370,52 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   for (int d = 0; d < DIM; ++d) sim.iface.up[d] = -sim.set.gdir[d];
   for (int f = 0; f < 2 * DIM; ++f) sim.iface.face[f] = sim.face[f];
 
-  PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, sim.grid));
-  if (sim.iface.type != InterfaceType::Bonded)
+  // Membrane chains: each a body between the material below and above it (chain.hpp).
+  PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
+  PetscCall(PetscOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
+                             sim.chain_spacing, &sim.chain_spacing, nullptr));
+  PetscBool chain_scaling = PETSC_TRUE;
+  PetscCall(PetscOptionsBool("-chain_inertia_scaling",
+                             "Scale each chain's mass so its axial wave is no faster than the "
+                             "fastest continuum material's (the load is unchanged); applies "
+                             "under either -inertia_scaling",
+                             nullptr, chain_scaling, &chain_scaling, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(sim.chain_spacing >= 0.05 && sim.chain_spacing <= 1, sim.comm,
+             PETSC_ERR_ARG_OUTOFRANGE, "-chain_spacing must be in [0.05, 1] cells (got %g)",
+             sim.chain_spacing);
+  const int nchain = static_cast<int>(sim.chain_specs.size());
+  PetscCheck(nchain <= 3, sim.comm, PETSC_ERR_SUP, "at most 3 chains per scene (got %d)", nchain);
+  PetscCheck(!(sim.set.musl && nchain > 0), sim.comm, PETSC_ERR_SUP,
+             "-musl is not supported with membrane chains (use USL: -musl 0)");
+  const int nbody = nchain > 0 ? 2 * nchain + 1 : 1;
+  sim.chains.resize(nchain);
+  for (int k = 0; k < nchain; ++k) {
+    Chain &c = sim.chains[k];
+    c.body = 2 * k + 1;
+    c.slot = nbody * GridDof::NDOF + k * ChainDof::NDOF;
+    // faces default to the -interface_* options; a chain is in contact unless told otherwise
+    const FaceType ft = type_set ? static_cast<FaceType>(sim.iface.type) : FaceType::Contact;
+    c.top.type = c.bottom.type = ft;
+    c.top.mu = sim.iface.mu_top;
+    c.bottom.mu = sim.iface.mu_bottom;
+    PetscCall(ChainCreate(sim.comm, sim.chain_specs[k], sim.chain_spacing * sim.set.h, c));
+    // inertia: the sheet's axial wave no faster than the continuum's (its load is unchanged)
+    if (chain_scaling && cmax > 0) c.line_mass = c.law.J / (cmax * cmax);
+    chain_update_tension(c);
+  }
+  sim.contact.tail_share = sim.iface.tail_share;
+  for (int f = 0; f < 2 * DIM; ++f) sim.contact.face[f] = sim.face[f];
+
+  PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody,
+                       nchain * ChainDof::NDOF, sim.grid));
+  if (sim.iface.type != InterfaceType::Bonded && nchain == 0)
     PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
   PetscCall(ParticlesCreate(sim.grid, sim.parts));
   std::vector<ParticleInit> init;
   PetscCall(sim.scene->generate(sim, init));
   PetscCall(ApplyFaceTractions(sim, init));
+  if (nchain > 0) AssignBodies(sim, init);
   // The PMPM support spans at most two cells per direction: 0 < l <= h/2.
   for (const auto &q : init)
     for (int d = 0; d < DIM; ++d)
@@ -360,7 +426,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(SimulationIndexParticles(sim));
   PetscInt n;
   PetscCall(ParticlesGlobalCount(sim.parts, &n));
-  PetscCheck(n > 0, sim.comm, PETSC_ERR_USER_INPUT,
+  PetscCheck(n > 0 || nchain > 0, sim.comm, PETSC_ERR_USER_INPUT,
              "the scene produced no particles: check the geometry options against -cell_size");
   // Step 0: monitor() also sees the initial state, where scenes may set an initial velocity field.
   PetscCall(sim.scene->monitor(sim));

@@ -49,13 +49,15 @@ inline void stencil(const GridView &G, const double *x, const double *l, Stencil
 template <class Shape>
 void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
          PetscInt nidx) {
-  constexpr int ND = GridDof::NDOF;
+  const int ND = G.nd;
   const PetscInt row = G.gm[0] * ND;
+  const bool bodies = G.nbody > 1; // each particle writes its own body's block
   Stencil<Shape> S;
   const PetscInt n = idx ? nidx : P.n;
   for (PetscInt k = 0; k < n; ++k) {
     const PetscInt p = idx ? idx[k] : k;
     stencil<Shape>(G, P.x + p * DIM, P.lp + p * DIM, S);
+    if (bodies) S.node0 += P.body[p] * GridDof::NDOF;
     const double m = P.mass[p], V = P.vol[p];
     const double mv0 = m * P.v[p * DIM], mv1 = m * P.v[p * DIM + 1];
     const double *s = P.stress + p * NSTRESS;
@@ -92,9 +94,10 @@ void p2g_traction(const ParticleView &P, const std::vector<PetscInt> &idx, doubl
     const double xf[DIM] = {P.x[p * DIM] + o[0], P.x[p * DIM + 1] + o[1]};
     weights<LinearShape>(xf, zero, G.origin, G.h, W);
     const double t[DIM] = {factor * P.traction[p * DIM], factor * P.traction[p * DIM + 1]};
+    const int off = G.nbody > 1 ? P.body[p] * GridDof::NDOF : 0;
     for (int b = 0; b < 2; ++b)
       for (int a = 0; a < 2; ++a) {
-        double *node = G.node(W.base[0] + a, W.base[1] + b);
+        double *node = G.node(W.base[0] + a, W.base[1] + b) + off;
         const double w = W.w[b * 2 + a];
         for (int d = 0; d < DIM; ++d) {
           node[GridDof::F + d] += w * t[d];
@@ -109,7 +112,7 @@ void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt ni
                          const GridView &G) {
   // the body grid has no use for its external force: its FEXT slots carry the gradient
   for (PetscInt q = 0; q < G.gm[0] * G.gm[1]; ++q)
-    for (int d = 0; d < DIM; ++d) G.data[q * GridDof::NDOF + GridDof::FEXT + d] = 0.0;
+    for (int d = 0; d < DIM; ++d) G.data[q * G.nd + GridDof::FEXT + d] = 0.0;
   constexpr int NS = Shape::NS;
   Weights<Shape> W;
   for (PetscInt k = 0; k < nidx; ++k) {
@@ -127,7 +130,7 @@ void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt ni
 
 void p2g_cell_colour(const ParticleView &P, const GridView &G) {
   for (PetscInt q = 0; q < G.gm[0] * G.gm[1]; ++q)
-    for (int d = 0; d < DIM; ++d) G.data[q * GridDof::NDOF + GridDof::FEXT + d] = 0.0;
+    for (int d = 0; d < DIM; ++d) G.data[q * G.nd + GridDof::FEXT + d] = 0.0;
   const double invh = 1.0 / G.h;
   for (PetscInt p = 0; p < P.n; ++p) {
     // particles lie inside the grid (checked every step), so the truncation is a floor
@@ -144,37 +147,56 @@ void p2g_cell_colour(const ParticleView &P, const GridView &G) {
 
 void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) {
   const double dt = prm.dt, alpha = prm.damping_alpha;
+  constexpr int ND = GridDof::NDOF;
   for (PetscInt j = G.gs[1]; j < G.gs[1] + G.gm[1]; ++j) {
     for (PetscInt i = G.gs[0]; i < G.gs[0] + G.gm[0]; ++i) {
-      double *node = G.node(i, j);
-      const double m = node[GridDof::M];
-      if (m <= 0.0) continue; // empty node: nothing to update (its slots stay zero)
+      double *node0 = G.node(i, j);
+      // the node's totals over its bodies: the unbalanced force and the load are the sums (the
+      // forces between bodies at a node cancel)
+      double msum = 0.0, ftot[DIM] = {0.0, 0.0}, fext[DIM] = {0.0, 0.0};
+      for (int b = 0; b < G.nbody; ++b) {
+        const double *node = node0 + b * ND;
+        if (node[GridDof::M] <= 0.0) continue;
+        msum += node[GridDof::M];
+        for (int d = 0; d < DIM; ++d) {
+          ftot[d] += node[GridDof::F + d];
+          fext[d] += node[GridDof::FEXT + d];
+        }
+      }
+      if (msum <= 0.0) continue; // empty node: nothing to update (its slots stay zero)
       bool held[DIM];
       held_dofs(i, j, G.ncell, prm.face, held);
       double fext2 = 0.0;
-      for (int d = 0; d < DIM; ++d) fext2 += node[GridDof::FEXT + d] * node[GridDof::FEXT + d];
+      for (int d = 0; d < DIM; ++d) fext2 += fext[d] * fext[d];
       if (fext2 > 0.0) {
         st.sum_ext += std::sqrt(fext2);
         st.n_ext += 1.0;
       }
       double f2 = 0.0; // |f_int + f_ext|^2 over the free dofs
-      for (int d = 0; d < DIM; ++d) {
-        double v = node[GridDof::P + d] / m;
-        double f = node[GridDof::F + d];
-        if (held[d]) {
-          node[GridDof::P + d] = 0.0;
-          node[GridDof::F + d] = 0.0;
-          continue;
-        }
-        f2 += f * f;
-        if (alpha > 0.0 && v != 0.0) f -= alpha * std::fabs(f) * (v > 0.0 ? 1.0 : -1.0);
-        const double a = f / m;
-        v += dt * a;
-        node[GridDof::P + d] = v;
-        node[GridDof::F + d] = a;
-        st.kinetic += 0.5 * m * v * v;
-      }
+      for (int d = 0; d < DIM; ++d)
+        if (!held[d]) f2 += ftot[d] * ftot[d];
       st.max_unbalanced = std::fmax(st.max_unbalanced, std::sqrt(f2));
+      // each body's own momentum balance
+      for (int b = 0; b < G.nbody; ++b) {
+        double *node = node0 + b * ND;
+        const double m = node[GridDof::M];
+        if (m <= 0.0) continue;
+        for (int d = 0; d < DIM; ++d) {
+          double v = node[GridDof::P + d] / m;
+          double f = node[GridDof::F + d];
+          if (held[d]) {
+            node[GridDof::P + d] = 0.0;
+            node[GridDof::F + d] = 0.0;
+            continue;
+          }
+          if (alpha > 0.0 && v != 0.0) f -= alpha * std::fabs(f) * (v > 0.0 ? 1.0 : -1.0);
+          const double a = f / m;
+          v += dt * a;
+          node[GridDof::P + d] = v;
+          node[GridDof::F + d] = a;
+          st.kinetic += 0.5 * m * v * v;
+        }
+      }
     }
   }
 }
@@ -187,10 +209,11 @@ enum class G2PMode { Fused, Velocity, Kinematics };
 template <class Shape, G2PMode mode>
 void g2p_impl(const ParticleView &P, const GridView &G0, const GridView *G1, const Grid *grid,
               const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats *st) {
-  constexpr int ND = GridDof::NDOF;
+  const int ND = G0.nd;
   constexpr bool vel = mode != G2PMode::Kinematics, kin = mode != G2PMode::Velocity;
   const double dt = prm.dt, pic = prm.pic;
   const PetscInt row = G0.gm[0] * ND; // G1 shares G0's layout
+  const bool bodies = G0.nbody > 1;   // each particle reads its own body's block
   const double hx = G0.origin[0] + G0.ncell[0] * G0.h, hy = G0.origin[1] + G0.ncell[1] * G0.h;
   const double invh = 1.0 / G0.h;
   double c2max = 0, v2max = 0;
@@ -199,6 +222,7 @@ void g2p_impl(const ParticleView &P, const GridView &G0, const GridView *G1, con
     double *x = P.x + p * DIM, *v = P.v + p * DIM;
     const GridView &G = (G1 && P.colour[p] > 0.5) ? *G1 : G0; // interface body field
     stencil<Shape>(G, x, P.lp + p * DIM, S);
+    if (bodies) S.node0 += P.body[p] * GridDof::NDOF;
     double vg0 = 0, vg1 = 0, ag0 = 0, ag1 = 0, L0 = 0, L1 = 0, L2 = 0, L3 = 0;
     for (int b = 0; b < S.ny; ++b) {
       const double *r = S.node0 + b * row;

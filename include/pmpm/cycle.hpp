@@ -8,6 +8,7 @@ struct StepReport {
   GridStats grid;
   G2PStats g2p;
   InterfaceStats iface;
+  ContactStats contact; // chains only
 };
 
 PetscErrorCode LogRegister();

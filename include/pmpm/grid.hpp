@@ -1,7 +1,9 @@
 // The background grid: a DMDA of (n+1)^DIM nodes over the scene's box, uniform cell size h.
-// Nodal fields live in one vector with NDOF values per node (see GridDof). Particle-to-grid sums go
-// into the local (ghosted) vector and are added across ranks; grid-to-particle reads ghosted
-// values.
+// Nodal fields live in one vector. Every body on the grid (a continuum region with its own
+// velocity field, or a membrane chain, chain.hpp) has a block of GridDof::NDOF values per node;
+// a scene without chains has one body, and the blocks are followed by `extra` values per node
+// (a chain's geometry sums, ChainDof). Particle-to-grid sums go into the local (ghosted) vector
+// and are added across ranks; grid-to-particle reads ghosted values.
 #pragma once
 #include "pmpm/config.hpp"
 #include <petscdmda.h>
@@ -19,15 +21,17 @@ struct GridDof {
 };
 
 // A plain view of the ghosted local nodal array, for kernels: node (i, j) in global indices is
-// at data[((j - gs[1]) * gm[0] + (i - gs[0])) * NDOF].
+// at data[((j - gs[1]) * gm[0] + (i - gs[0])) * nd]; body b's block starts b * NDOF further.
 struct GridView {
   double h = 0;
   double origin[DIM] = {0, 0};
   PetscInt ncell[DIM] = {0, 0};
   PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0}; // ghosted start and size, node indices
+  int nbody = 1;                               // bodies (blocks of NDOF) per node
+  int nd = GridDof::NDOF;                      // values per node: nbody * NDOF + extra
   double *data = nullptr;
   double *node(PetscInt i, PetscInt j) const {
-    return data + ((j - gs[1]) * gm[0] + (i - gs[0])) * GridDof::NDOF;
+    return data + ((j - gs[1]) * gm[0] + (i - gs[0])) * nd;
   }
 };
 
@@ -36,6 +40,7 @@ struct Grid {
   double h = 0;
   double origin[DIM] = {0, 0};
   PetscInt ncell[DIM] = {0, 0};
+  int nbody = 1, nd = GridDof::NDOF;                     // see GridView
   PetscInt s[DIM] = {0, 0}, m[DIM] = {0, 0};             // owned nodes
   PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0};           // ghosted nodes
   PetscInt cell_lo[DIM] = {0, 0}, cell_hi[DIM] = {0, 0}; // owned cells [lo, hi)
@@ -49,10 +54,10 @@ struct Grid {
   }
 };
 
-// Create the DMDA: ncell cells of size h from origin; stencil width 2 (uGIMP support).
-// lx, ly may be null (PETSc's default split) or give the owned node counts per rank.
+// Create the DMDA: ncell cells of size h from origin; stencil width 2 (uGIMP support);
+// nbody blocks of NDOF values per node followed by extra values.
 PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[DIM],
-                          const PetscInt ncell[DIM], Grid &g);
+                          const PetscInt ncell[DIM], int nbody, int extra, Grid &g);
 PetscErrorCode GridDestroy(Grid &g);
 // Zero the local vector and hand out a writable view of it (restore with GridRestoreLocal).
 PetscErrorCode GridGetLocal(Grid &g, bool zero, GridView &v);

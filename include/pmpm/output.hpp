@@ -13,6 +13,10 @@ PetscErrorCode OutputSeriesFrame(Simulation &sim);
 PetscErrorCode OutputSeriesFinish(Simulation &sim);
 // Writes DIR/summary.json; results is the body of the "results" object ("k": v, ...).
 PetscErrorCode OutputSummary(Simulation &sim, const std::string &results);
+// Membrane chains: DIR/chain_<name>.csv (profile), DIR/chains.h5 + chains.xmf (polylines).
+PetscErrorCode OutputChains(Simulation &sim);
+// The "chains" and "contact" blocks of summary.json (empty without chains).
+std::string ChainSummaryJson(const Simulation &sim);
 // Rename DIR/name.tmp to DIR/name on rank 0.
 PetscErrorCode OutputCommit(Simulation &sim, const std::string &name);
 

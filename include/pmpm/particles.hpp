@@ -27,6 +27,7 @@ struct ParticleView {
   double *colour = nullptr;   // 1, interface colour (1 on the geomembrane)
   PetscInt *mat = nullptr;    // 1, material index
   PetscInt *pid = nullptr;    // 1, global particle id (rank-independent)
+  PetscInt *body = nullptr;   // 1, body on the grid (0 without chains; chain.hpp)
 };
 
 // One particle as a scene creates it.
@@ -41,6 +42,7 @@ struct ParticleInit {
   double colour;
   PetscInt mat;
   PetscInt pid;
+  PetscInt body = 0;
 };
 
 struct Particles {

@@ -1,6 +1,7 @@
 // Everything one run holds: settings from the options database, the grid, the particles, the
 // materials, the loads and boundary conditions, and the state of the relaxation.
 #pragma once
+#include "pmpm/chain.hpp"
 #include "pmpm/grid.hpp"
 #include "pmpm/interface.hpp"
 #include "pmpm/material.hpp"
@@ -98,6 +99,8 @@ struct Simulation {
   // Traction (Pa) on the body's outermost particles toward each box face (free faces only).
   double face_traction[2 * DIM][DIM] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}};
   std::vector<MaterialEntry> mats;
+  std::vector<ChainSpec> chain_specs; // membranes as chains (chain.hpp), bottom to top
+  double chain_spacing = 0.25;        // -chain_spacing: point spacing in cells
 
   Grid grid;
   Particles parts;
@@ -106,6 +109,11 @@ struct Simulation {
   std::vector<PetscInt> iface_idx;       // body-1 (colour 1) particles (this rank)
   InterfaceStats iface_stats;            // last step's counts (global)
   double iface_impulse[2] = {0, 0};      // normal impulse over the run: compression, tension
+  std::vector<Chain> chains;             // every rank holds every point
+  ContactParams contact;                 // stacked-body contact at chain nodes
+  ContactStats contact_stats;            // last step's (global)
+  double contact_impulse[2] = {0, 0};    // chain faces' normal impulse over the run: +, -
+  std::vector<double> chain_buf;         // scratch for the chains' allreduce
   std::vector<double> wave_modulus;      // per material
   std::vector<std::vector<int>> mat_idx; // particles of each material (this rank)
   std::vector<PetscInt> traction_idx;    // particles carrying a traction

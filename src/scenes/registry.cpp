@@ -9,6 +9,9 @@ std::unique_ptr<Scene> make_landfill_scene();
 std::unique_ptr<Scene> make_incline_scene();
 std::unique_ptr<Scene> make_layers_scene();
 std::unique_ptr<Scene> make_block_scene();
+std::unique_ptr<Scene> make_catenary_scene();
+std::unique_ptr<Scene> make_pullout_scene();
+std::unique_ptr<Scene> make_trench_scene();
 
 std::unique_ptr<Scene> make_scene(const std::string &name) {
   if (name == "bar") return make_bar_scene();
@@ -17,6 +20,9 @@ std::unique_ptr<Scene> make_scene(const std::string &name) {
   if (name == "incline") return make_incline_scene();
   if (name == "layers") return make_layers_scene();
   if (name == "block") return make_block_scene();
+  if (name == "catenary") return make_catenary_scene();
+  if (name == "pullout") return make_pullout_scene();
+  if (name == "trench") return make_trench_scene();
   return nullptr;
 }
 

@@ -1,0 +1,144 @@
+// A membrane (geomembrane, geotextile) as a chain of material points: the seed paper's "single
+// layer of material points" (section 3.2) at any cell size. Its thickness t is a property, not a
+// resolved dimension (FIELD.md 1).
+//
+// A chain is an ordered line of points from left to right (x increasing). Segment k joins points
+// k and k + 1; its engineering strain eps_k = l_k / l0_k - 1 gives the axial force per unit width
+// T_k (N/m) from the membrane law (membrane_law.hpp), with axial stiffness J = E t / (1 - nu^2)
+// (plane strain, the default: the sheet cannot strain out of plane) or E t (uniaxial). Point i
+// carries the mass and weight of half of each adjacent segment and the internal force
+//   f_i = T_i tau_i - T_{i-1} tau_{i-1}      (tau_k the unit vector along segment k).
+//
+// On the grid a chain is a body of its own (bodies: the material below a chain is body b - 1,
+// the chain b, the material above b + 1). Its points reach the nodes through uGIMP blocks of one
+// cell (half-size h/2 in both directions) whatever their spacing, so every node that both
+// neighbours of the sheet reach also sees the sheet and its normal: the chain's geometry sums
+// (ChainDof) give the contact normal at a node as the weighted mean of its points' normals
+// (the paper's single-layer rule: the normal of point i is perpendicular to x_{i+1} - x_{i-1}).
+// contact_stack.hpp resolves the stacked bodies at each node: no interpenetration, separation
+// where the faces pull apart (contact) or not (paper, bonded), Coulomb friction per face.
+//
+// Distribution: a chain has O(width / h) points against O(area / h^2) particles, so every rank
+// holds all its points. The rank owning a point's cell (DMSwarm's rule, Grid::owns_cell) maps it
+// to the grid and updates it; one allreduce per step (sum, other ranks contribute zeros) makes
+// the points identical everywhere, so neighbours across rank boundaries need no search and the
+// answer does not depend on the rank count.
+#pragma once
+#include "pmpm/contact_stack.hpp"
+#include "pmpm/grid.hpp"
+#include "pmpm/materials/membrane_law.hpp"
+#include "pmpm/transfers.hpp"
+#include <string>
+#include <vector>
+
+namespace pmpm {
+
+// Per-node slots of one chain's geometry, after the bodies' blocks (Grid::nd).
+struct ChainDof {
+  static constexpr int NX = 0, NY = 1; // sum_i w m_i n_i (the normal, pointing to the body above)
+  static constexpr int LEN = 2;        // sum_i w l_i (the sheet's length the node carries)
+  static constexpr int NTOP = 3, NBOT = 4; // normal impulse on the upper / lower face (N s/m)
+  static constexpr int STOP = 5, SBOT = 6; // friction impulse on the chain along tau, per face
+  static constexpr int NDOF = 7;
+};
+
+enum class StiffnessKind { PlaneStrain = 0, Uniaxial = 1 };
+inline constexpr const char *StiffnessKindNames[] = {"plane_strain", "uniaxial", "StiffnessKind",
+                                                     "STIFFNESS_", nullptr};
+
+// -chain_<name>_interface: contact_stack's FaceType, in its order.
+inline constexpr const char *FaceTypeNames[] = {"bonded", "paper", "contact", "FaceType", "FACE_",
+                                                nullptr};
+
+// Friction on one face of a chain: Coulomb mu (or tan delta) plus an adhesion (Pa).
+struct ChainFace {
+  FaceType type = FaceType::Contact;
+  double mu = 0.5;
+  double adhesion = 0;
+};
+
+// What a scene gives to make a chain.
+struct ChainSpec {
+  std::string name;         // options prefix -chain_<name>_ and output chain_<name>.csv
+  std::string material;     // options prefix -mat_<material>_
+  std::vector<double> line; // polyline x0, y0, x1, y1, ... (x increasing)
+  double thickness = 0;     // t (m)
+  bool pin_start = false, pin_end = false; // end points held fixed (supports)
+  double end_force[DIM] = {0, 0};          // dead load on the last point (N/m), ramped
+};
+
+struct Chain {
+  std::string name, material;
+  int body = 1; // its body index on the grid
+  int slot = 0; // offset of its ChainDof block in a node
+  double thickness = 0, E = 0, nu = 0, gamma = 0, density = 0;
+  StiffnessKind stiffness = StiffnessKind::PlaneStrain;
+  MembraneLaw law;
+  double line_mass = 0;   // inertial mass per unit initial length (kg/m), possibly scaled
+  double line_weight = 0; // gamma t (N/m per m): the load, never scaled
+  ChainFace top, bottom;
+  bool pin[2] = {false, false};
+  double end_force[DIM] = {0, 0};
+  // points (every rank holds all of them)
+  int n = 0;
+  std::vector<double> x, x0, v, mass, weight, length; // length: l0 share of each point
+  std::vector<double> f;                              // internal force (DIM per point)
+  // segments
+  std::vector<double> l0, eps, eps_p, alpha, T;
+  std::vector<char> slack;
+  // per point, accumulated from the grid: slip on each face (m), contact pressure (Pa)
+  std::vector<double> slip_top, slip_bot, p_top, p_bot;
+  std::vector<char> owned; // this rank updates the point (scratch of g2p_chain)
+  // last step's totals: friction force on the chain along its tangent (N/m) and the reaction at
+  // pinned ends (N/m)
+  double friction_force = 0;
+  double reaction[2][DIM] = {{0, 0}, {0, 0}};
+
+  double wave_speed() const { return std::sqrt(law.J / line_mass); }
+};
+
+// Build the points from a spec: spacing at most `ds` along the polyline; material constants and
+// law from -mat_<material>_*; friction per face from -chain_<name>_* (defaults: the
+// -interface_* options). Collective (options).
+PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chain &c);
+
+// Kernels (plain functions; cycle.cpp calls them between the PETSc exchanges).
+// Segment strains and tensions from the current positions (law, plastic state), then the
+// internal point forces.
+void chain_update_tension(Chain &c);
+// Mass, momentum, force (internal, weight, end load) and geometry of the points this rank owns
+// into body c.body's block and the chain's slots.
+void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &grid);
+// Points this rank owns: FLIP/PIC velocity, position; slip and pressure on each face from the
+// neighbouring bodies. Other ranks' points are zeroed (the caller sums over ranks).
+struct ChainG2PStats {
+  double max_v = 0, kinetic = 0, weight_power = 0;
+  PetscInt bad = 0;
+};
+void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm,
+               ChainG2PStats &st);
+// Pack / unpack the fields the owner updates, for the allreduce.
+void chain_pack(const Chain &c, std::vector<double> &buf);
+void chain_unpack(Chain &c, const std::vector<double> &buf);
+// How many points a summed buffer says were owned (each must be, exactly once).
+int chain_owner_count(const std::vector<double> &buf, int n);
+
+// The contact between stacked bodies at every owned node where two or more bodies meet, after
+// grid_update: per-body velocities and accelerations replaced by contact_stack's answer.
+struct ContactParams {
+  double dt = 0;
+  double tail_share = 1e-3; // continuum body below this share of the node: common acceleration
+  FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
+};
+struct ContactStats {
+  double contact_nodes = 0, slip_nodes = 0, separated_nodes = 0;
+  double compression = 0, tension = 0; // normal impulse this step (N s/m)
+  std::vector<double> friction;        // per chain: friction force on it along its tangent (N/m)
+};
+void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const ContactParams &prm,
+                    ContactStats &st);
+
+// Elastic energy of a chain (J/m): sum_k T_k^2 l0_k / (2 J).
+double chain_elastic_energy(const Chain &c);
+
+} // namespace pmpm

@@ -1,0 +1,476 @@
+#include "pmpm/chain.hpp"
+#include "pmpm/shape.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace pmpm {
+
+namespace {
+// A body's share of a node's mass at or below this is round-off (it does not reach the node).
+constexpr double kRoundOff = 1e-12;
+// Below this the chains' normal sum at a node is round-off: no normal, the bodies move as one.
+constexpr double kNoNormal = 1e-300;
+
+// Unit tangent at point i from its neighbours (one-sided at the ends); the normal is its left
+// perpendicular, which points to the body above for a chain running in +x.
+void point_frame(const Chain &c, int i, double tau[DIM], double nrm[DIM]) {
+  const int a = std::max(i - 1, 0), b = std::min(i + 1, c.n - 1);
+  double d[DIM] = {c.x[b * DIM] - c.x[a * DIM], c.x[b * DIM + 1] - c.x[a * DIM + 1]};
+  const double l = std::hypot(d[0], d[1]);
+  tau[0] = d[0] / l;
+  tau[1] = d[1] / l;
+  nrm[0] = -tau[1];
+  nrm[1] = tau[0];
+}
+
+bool pinned(const Chain &c, int i) { return (i == 0 && c.pin[0]) || (i == c.n - 1 && c.pin[1]); }
+
+bool owned_by(const Grid &grid, const GridView &G, const double *x) {
+  PetscInt cell[DIM];
+  for (int d = 0; d < DIM; ++d) {
+    const double xi = (x[d] - G.origin[d]) / G.h;
+    if (!(xi >= 0 && xi < G.ncell[d])) return false; // off the grid: nobody (reported)
+    cell[d] = static_cast<PetscInt>(xi);
+  }
+  return grid.owns_cell(cell);
+}
+} // namespace
+
+PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chain &c) {
+  PetscFunctionBeginUser;
+  c.name = spec.name;
+  c.material = spec.material;
+  c.thickness = spec.thickness;
+  c.pin[0] = spec.pin_start;
+  c.pin[1] = spec.pin_end;
+  for (int d = 0; d < DIM; ++d) c.end_force[d] = spec.end_force[d];
+  PetscCheck(spec.thickness > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "chain %s: the thickness must be > 0 (got %g)", spec.name.c_str(), spec.thickness);
+  const size_t nv = spec.line.size() / DIM;
+  PetscCheck(nv >= 2 && spec.line.size() % DIM == 0, comm, PETSC_ERR_ARG_WRONG,
+             "chain %s: its line needs at least two points x0,y0,x1,y1", spec.name.c_str());
+  for (size_t k = 1; k < nv; ++k)
+    PetscCheck(spec.line[k * DIM] > spec.line[(k - 1) * DIM], comm, PETSC_ERR_ARG_WRONG,
+               "chain %s: its points must run left to right (x increasing; vertex %zu at x = %g "
+               "follows x = %g)",
+               spec.name.c_str(), k, spec.line[k * DIM], spec.line[(k - 1) * DIM]);
+
+  // the membrane's material: -mat_<material>_*
+  const std::string prefix = "mat_" + spec.material + "_";
+  PetscBool hasE = PETSC_FALSE;
+  double sigma_y = 0, H = 0;
+  c.nu = 0.0;
+  PetscOptionsBegin(comm, prefix.c_str(), ("Membrane material " + spec.material).c_str(), nullptr);
+  PetscCall(PetscOptionsEnum("-law", "Membrane law: linear, tension_only (slack in compression), "
+                                     "elastoplastic (1D von Mises, linear hardening)",
+                             nullptr, MembraneLawNames, (PetscEnum)c.law.kind,
+                             (PetscEnum *)&c.law.kind, nullptr));
+  PetscCall(PetscOptionsReal("-E", "Young's modulus (Pa), > 0", nullptr, c.E, &c.E, &hasE));
+  PetscCall(PetscOptionsReal("-nu", "Poisson's ratio, 0 <= nu < 0.5 (plane-strain stiffness)",
+                             nullptr, c.nu, &c.nu, nullptr));
+  PetscCall(PetscOptionsReal("-gamma", "Unit weight (N/m^3), >= 0; the sheet weighs gamma t",
+                             nullptr, c.gamma, &c.gamma, nullptr));
+  PetscCall(PetscOptionsReal("-density", "Inertial density (kg/m^3), > 0 (default gamma / 9.81)",
+                             nullptr, c.density, &c.density, nullptr));
+  PetscCall(PetscOptionsEnum("-axial_stiffness",
+                             "J = E t / (1 - nu^2) (plane_strain) or E t (uniaxial)", nullptr,
+                             StiffnessKindNames, (PetscEnum)c.stiffness,
+                             (PetscEnum *)&c.stiffness, nullptr));
+  PetscCall(PetscOptionsReal("-yield_stress", "Uniaxial yield stress (Pa), > 0 (elastoplastic)",
+                             nullptr, sigma_y, &sigma_y, nullptr));
+  PetscCall(PetscOptionsReal("-hardening", "Linear hardening modulus (Pa), >= 0 (elastoplastic)",
+                             nullptr, H, &H, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(hasE, comm, PETSC_ERR_USER_INPUT, "-%sE is required (Young's modulus in Pa)",
+             prefix.c_str());
+  PetscCheck(c.E > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sE must be > 0 (got %g)", prefix.c_str(),
+             c.E);
+  PetscCheck(c.nu >= 0 && c.nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-%snu must be in [0, 0.5) (got %g)", prefix.c_str(), c.nu);
+  PetscCheck(c.gamma >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sgamma must be >= 0 (got %g)",
+             prefix.c_str(), c.gamma);
+  PetscCheck(c.density >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sdensity must be > 0 (got %g)",
+             prefix.c_str(), c.density);
+  if (c.density <= 0) c.density = c.gamma > 0 ? c.gamma / 9.81 : 1000.0;
+  const double Eeff = c.stiffness == StiffnessKind::PlaneStrain ? c.E / (1 - c.nu * c.nu) : c.E;
+  c.law.J = Eeff * c.thickness;
+  if (c.law.kind == MembraneLawKind::Elastoplastic) {
+    PetscCheck(sigma_y > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%syield_stress must be > 0 with -%slaw elastoplastic (got %g)", prefix.c_str(),
+               prefix.c_str(), sigma_y);
+    PetscCheck(H >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%shardening must be >= 0",
+               prefix.c_str());
+    c.law.yield_T = sigma_y * c.thickness;
+    c.law.hardening = H * c.thickness;
+  }
+  c.line_weight = c.gamma * c.thickness;
+  c.line_mass = c.density * c.thickness; // SimulationSetup may scale it
+
+  // the interfaces on its faces: -chain_<name>_*
+  const std::string cp = "chain_" + spec.name + "_";
+  double delta[2] = {-1, -1};
+  PetscOptionsBegin(comm, cp.c_str(), ("Chain " + spec.name + ": interfaces").c_str(), nullptr);
+  FaceType ft = c.top.type;
+  PetscCall(PetscOptionsEnum("-interface",
+                             "Both faces: contact (Bardenhagen, separates), paper (one normal "
+                             "velocity), bonded",
+                             nullptr, FaceTypeNames, (PetscEnum)ft, (PetscEnum *)&ft, nullptr));
+  c.top.type = c.bottom.type = ft;
+  PetscCall(PetscOptionsReal("-mu_top", "Friction coefficient on the upper face, >= 0", nullptr,
+                             c.top.mu, &c.top.mu, nullptr));
+  PetscCall(PetscOptionsReal("-mu_bottom", "Friction coefficient on the lower face, >= 0",
+                             nullptr, c.bottom.mu, &c.bottom.mu, nullptr));
+  PetscCall(PetscOptionsReal("-delta_top",
+                             "Interface friction angle of the upper face (degrees, 0..60; "
+                             "replaces mu_top by tan delta)",
+                             nullptr, delta[0], &delta[0], nullptr));
+  PetscCall(PetscOptionsReal("-delta_bottom", "Interface friction angle of the lower face (degrees)",
+                             nullptr, delta[1], &delta[1], nullptr));
+  PetscCall(PetscOptionsReal("-adhesion_top", "Adhesion of the upper face (Pa), >= 0", nullptr,
+                             c.top.adhesion, &c.top.adhesion, nullptr));
+  PetscCall(PetscOptionsReal("-adhesion_bottom", "Adhesion of the lower face (Pa), >= 0", nullptr,
+                             c.bottom.adhesion, &c.bottom.adhesion, nullptr));
+  PetscOptionsEnd();
+  ChainFace *faces[2] = {&c.top, &c.bottom};
+  const char *fname[2] = {"top", "bottom"};
+  for (int k = 0; k < 2; ++k) {
+    if (delta[k] >= 0) {
+      PetscCheck(delta[k] <= 60, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-%sdelta_%s must be in [0, 60] degrees (got %g)", cp.c_str(), fname[k],
+                 delta[k]);
+      faces[k]->mu = std::tan(delta[k] * M_PI / 180);
+    }
+    PetscCheck(faces[k]->mu >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%smu_%s must be >= 0 (got %g)", cp.c_str(), fname[k], faces[k]->mu);
+    PetscCheck(faces[k]->adhesion >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%sadhesion_%s must be >= 0 (got %g)", cp.c_str(), fname[k], faces[k]->adhesion);
+  }
+
+  // points: each polyline piece divided evenly with spacing at most ds
+  PetscCheck(ds > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "chain point spacing must be > 0");
+  c.x.clear();
+  for (size_t k = 0; k + 1 < nv; ++k) {
+    const double *a = &spec.line[k * DIM], *b = &spec.line[(k + 1) * DIM];
+    const double L = std::hypot(b[0] - a[0], b[1] - a[1]);
+    const int ns = std::max(1, static_cast<int>(std::ceil(L / ds - 1e-9)));
+    for (int s = (k == 0 ? 0 : 1); s <= ns; ++s)
+      for (int d = 0; d < DIM; ++d) c.x.push_back(a[d] + (b[d] - a[d]) * double(s) / ns);
+  }
+  c.n = static_cast<int>(c.x.size() / DIM);
+  c.x0 = c.x;
+  c.v.assign(c.x.size(), 0.0);
+  c.f.assign(c.x.size(), 0.0);
+  c.l0.assign(c.n - 1, 0.0);
+  c.length.assign(c.n, 0.0);
+  for (int k = 0; k + 1 < c.n; ++k) {
+    c.l0[k] = std::hypot(c.x[(k + 1) * DIM] - c.x[k * DIM], c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1]);
+    c.length[k] += 0.5 * c.l0[k];
+    c.length[k + 1] += 0.5 * c.l0[k];
+  }
+  c.eps.assign(c.n - 1, 0.0);
+  c.eps_p.assign(c.n - 1, 0.0);
+  c.alpha.assign(c.n - 1, 0.0);
+  c.T.assign(c.n - 1, 0.0);
+  c.slack.assign(c.n - 1, 0);
+  c.slip_top.assign(c.n, 0.0);
+  c.slip_bot.assign(c.n, 0.0);
+  c.p_top.assign(c.n, 0.0);
+  c.p_bot.assign(c.n, 0.0);
+  c.owned.assign(c.n, 0);
+  PetscFunctionReturn(0);
+}
+
+void chain_update_tension(Chain &c) {
+  for (int k = 0; k + 1 < c.n; ++k) {
+    const double dx = c.x[(k + 1) * DIM] - c.x[k * DIM], dy = c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1];
+    c.eps[k] = std::hypot(dx, dy) / c.l0[k] - 1.0;
+    bool slack = false;
+    c.T[k] = c.law.tension(c.eps[k], c.eps_p[k], c.alpha[k], slack);
+    c.slack[k] = slack;
+  }
+  std::fill(c.f.begin(), c.f.end(), 0.0);
+  for (int k = 0; k + 1 < c.n; ++k) {
+    const double dx = c.x[(k + 1) * DIM] - c.x[k * DIM], dy = c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1];
+    const double l = std::hypot(dx, dy), fx = c.T[k] * dx / l, fy = c.T[k] * dy / l;
+    c.f[k * DIM] += fx; // the segment pulls its ends toward each other under tension
+    c.f[k * DIM + 1] += fy;
+    c.f[(k + 1) * DIM] -= fx;
+    c.f[(k + 1) * DIM + 1] -= fy;
+  }
+  // what the supports hold: minus the sheet's pull on the pinned points
+  for (int e = 0; e < 2; ++e) {
+    const int i = e == 0 ? 0 : c.n - 1;
+    for (int d = 0; d < DIM; ++d) c.reaction[e][d] = c.pin[e] ? -c.f[i * DIM + d] : 0.0;
+  }
+}
+
+void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &grid) {
+  Weights<UGIMPShape> W;
+  constexpr int NS = UGIMPShape::NS;
+  const double lp[DIM] = {0.5 * G.h, 0.5 * G.h}; // one cell: see chain.hpp
+  const int body = c.body * GridDof::NDOF, slot = c.slot;
+  for (int i = 0; i < c.n; ++i) {
+    const double *x = &c.x[i * DIM];
+    if (pinned(c, i) || !owned_by(grid, G, x)) continue;
+    weights<UGIMPShape>(x, lp, G.origin, G.h, W);
+    double tau[DIM], nrm[DIM];
+    point_frame(c, i, tau, nrm);
+    const double m = c.line_mass * c.length[i], wt = load.factor * c.line_weight * c.length[i];
+    double fext[DIM] = {wt * load.gdir[0], wt * load.gdir[1]};
+    if (i == c.n - 1)
+      for (int d = 0; d < DIM; ++d) fext[d] += load.factor * c.end_force[d];
+    for (int b = 0; b < NS; ++b)
+      for (int a = 0; a < NS; ++a) {
+        const double w = W.w[b * NS + a];
+        if (w == 0.0) continue;
+        double *node = G.node(W.base[0] + a, W.base[1] + b);
+        double *nb = node + body, *ns = node + slot;
+        nb[GridDof::M] += w * m;
+        for (int d = 0; d < DIM; ++d) {
+          nb[GridDof::P + d] += w * m * c.v[i * DIM + d];
+          nb[GridDof::F + d] += w * (c.f[i * DIM + d] + fext[d]);
+          nb[GridDof::FEXT + d] += w * fext[d];
+        }
+        ns[ChainDof::NX] += w * m * nrm[0];
+        ns[ChainDof::NY] += w * m * nrm[1];
+        ns[ChainDof::LEN] += w * c.length[i];
+      }
+  }
+}
+
+void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm,
+               ChainG2PStats &st) {
+  Weights<UGIMPShape> W;
+  constexpr int NS = UGIMPShape::NS, ND = GridDof::NDOF;
+  const double lp[DIM] = {0.5 * G.h, 0.5 * G.h};
+  const double dt = prm.dt, pic = prm.pic;
+  const int body = c.body * ND, above = (c.body + 1) * ND, below = (c.body - 1) * ND;
+  const int slot = c.slot;
+  for (int i = 0; i < c.n; ++i) {
+    double *x = &c.x[i * DIM], *v = &c.v[i * DIM];
+    c.owned[i] = owned_by(grid, G, x);
+    if (!c.owned[i]) {
+      // off the grid: nobody owns it; the caller counts the owners
+      continue;
+    }
+    if (pinned(c, i)) {
+      v[0] = v[1] = 0.0;
+      continue;
+    }
+    weights<UGIMPShape>(x, lp, G.origin, G.h, W);
+    double vg[DIM] = {0, 0}, ag[DIM] = {0, 0}, va[DIM] = {0, 0}, vb[DIM] = {0, 0};
+    double ma = 0, mb = 0, nt = 0, nbt = 0, len = 0;
+    for (int b = 0; b < NS; ++b)
+      for (int a = 0; a < NS; ++a) {
+        const double w = W.w[b * NS + a];
+        if (w == 0.0) continue;
+        const double *node = G.node(W.base[0] + a, W.base[1] + b);
+        const double *nc = node + body, *na = node + above, *nb = node + below, *ns = node + slot;
+        for (int d = 0; d < DIM; ++d) {
+          vg[d] += w * nc[GridDof::P + d];
+          ag[d] += w * nc[GridDof::F + d];
+        }
+        // the neighbouring bodies' velocity where they are, mass-weighted (slip)
+        const double wa = w * na[GridDof::M], wb = w * nb[GridDof::M];
+        for (int d = 0; d < DIM; ++d) {
+          va[d] += wa * na[GridDof::P + d];
+          vb[d] += wb * nb[GridDof::P + d];
+        }
+        ma += wa;
+        mb += wb;
+        nt += w * ns[ChainDof::NTOP];
+        nbt += w * ns[ChainDof::NBOT];
+        len += w * ns[ChainDof::LEN];
+      }
+    for (int d = 0; d < DIM; ++d) v[d] = (1.0 - pic) * (v[d] + dt * ag[d]) + pic * vg[d];
+    double tau[DIM], nrm[DIM];
+    point_frame(c, i, tau, nrm);
+    const double vt = vg[0] * tau[0] + vg[1] * tau[1];
+    if (ma > 0) c.slip_top[i] += dt * (vt - (va[0] * tau[0] + va[1] * tau[1]) / ma);
+    if (mb > 0) c.slip_bot[i] += dt * (vt - (vb[0] * tau[0] + vb[1] * tau[1]) / mb);
+    c.p_top[i] = len > 0 ? nt / (dt * len) : 0.0;
+    c.p_bot[i] = len > 0 ? nbt / (dt * len) : 0.0;
+    x[0] += dt * vg[0];
+    x[1] += dt * vg[1];
+    if (!std::isfinite(x[0] + x[1] + v[0] + v[1])) ++st.bad;
+  }
+}
+
+// Owner's values, zeros elsewhere: x, v, slips, pressures per point (+ 1 ownership count).
+void chain_pack(const Chain &c, std::vector<double> &buf) {
+  constexpr int W = 2 * DIM + 5;
+  buf.assign(static_cast<size_t>(c.n) * W, 0.0);
+  for (int i = 0; i < c.n; ++i) {
+    if (!c.owned[i]) continue;
+    double *b = &buf[static_cast<size_t>(i) * W];
+    for (int d = 0; d < DIM; ++d) {
+      b[d] = c.x[i * DIM + d];
+      b[DIM + d] = c.v[i * DIM + d];
+    }
+    b[2 * DIM + 0] = c.slip_top[i];
+    b[2 * DIM + 1] = c.slip_bot[i];
+    b[2 * DIM + 2] = c.p_top[i];
+    b[2 * DIM + 3] = c.p_bot[i];
+    b[2 * DIM + 4] = 1.0;
+  }
+}
+
+void chain_unpack(Chain &c, const std::vector<double> &buf) {
+  constexpr int W = 2 * DIM + 5;
+  for (int i = 0; i < c.n; ++i) {
+    const double *b = &buf[static_cast<size_t>(i) * W];
+    for (int d = 0; d < DIM; ++d) {
+      c.x[i * DIM + d] = b[d];
+      c.v[i * DIM + d] = b[DIM + d];
+    }
+    c.slip_top[i] = b[2 * DIM + 0];
+    c.slip_bot[i] = b[2 * DIM + 1];
+    c.p_top[i] = b[2 * DIM + 2];
+    c.p_bot[i] = b[2 * DIM + 3];
+  }
+}
+
+int chain_owner_count(const std::vector<double> &buf, int n) {
+  constexpr int W = 2 * DIM + 5;
+  int k = 0;
+  for (int i = 0; i < n; ++i) k += buf[static_cast<size_t>(i) * W + 2 * DIM + 4] == 1.0;
+  return k;
+}
+
+double chain_elastic_energy(const Chain &c) {
+  double u = 0;
+  for (int k = 0; k + 1 < c.n; ++k) u += 0.5 * c.T[k] * c.T[k] * c.l0[k] / c.law.J;
+  return u;
+}
+
+namespace {
+// The face between two present bodies lo < hi at a node: the face of the chain between them,
+// or, where a chain lies between but does not reach the node, the weaker of its two faces.
+StackFace face_between(const std::vector<Chain> &chains, int lo, int hi) {
+  StackFace f;
+  bool first = true;
+  for (const Chain &c : chains) {
+    if (c.body < lo || c.body > hi) continue;
+    const ChainFace *cand[2] = {nullptr, nullptr};
+    if (c.body == lo)
+      cand[0] = &c.top;
+    else if (c.body == hi)
+      cand[0] = &c.bottom;
+    else {
+      cand[0] = &c.top;
+      cand[1] = &c.bottom;
+    }
+    for (const ChainFace *cf : cand) {
+      if (!cf) continue;
+      if (first) {
+        f.type = cf->type;
+        f.mu = cf->mu;
+        f.adhesion = cf->adhesion;
+        first = false;
+      } else {
+        f.mu = std::min(f.mu, cf->mu);
+        f.adhesion = std::min(f.adhesion, cf->adhesion);
+        if (cf->type == FaceType::Contact || f.type == FaceType::Contact)
+          f.type = FaceType::Contact;
+        else if (cf->type == FaceType::Paper || f.type == FaceType::Paper)
+          f.type = FaceType::Paper;
+      }
+    }
+  }
+  if (first) f.type = FaceType::Bonded; // two continuum bodies with no chain between: one body
+  return f;
+}
+} // namespace
+
+void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const ContactParams &prm,
+                    ContactStats &st) {
+  constexpr int ND = GridDof::NDOF, MAXB = 8;
+  const double dt = prm.dt;
+  const int nb = G.nbody;
+  if (nb > MAXB) return; // guarded at setup
+  st.friction.assign(chains.size(), 0.0);
+  for (PetscInt j = G.gs[1]; j < G.gs[1] + G.gm[1]; ++j)
+    for (PetscInt i = G.gs[0]; i < G.gs[0] + G.gm[0]; ++i) {
+      double *node = G.node(i, j);
+      double msum = 0;
+      for (int b = 0; b < nb; ++b) msum += node[b * ND + GridDof::M];
+      if (msum <= 0) continue;
+      int ids[MAXB], k = 0;
+      for (int b = 0; b < nb; ++b)
+        if (node[b * ND + GridDof::M] > kRoundOff * msum) ids[k++] = b;
+      if (k < 2) continue;
+      bool held[DIM];
+      held_dofs(i, j, G.ncell, prm.face, held);
+      // the normal: the chains' weighted point normals at this node
+      double n[DIM] = {0, 0};
+      for (const Chain &c : chains) {
+        n[0] += node[c.slot + ChainDof::NX];
+        n[1] += node[c.slot + ChainDof::NY];
+      }
+      const double nn = std::hypot(n[0], n[1]);
+      double m[MAXB], v[2 * MAXB], vold[2 * MAXB], acm[DIM] = {0, 0};
+      for (int q = 0; q < k; ++q) {
+        const double *nbk = node + ids[q] * ND;
+        m[q] = nbk[GridDof::M];
+        for (int d = 0; d < DIM; ++d) {
+          v[q * DIM + d] = nbk[GridDof::P + d];
+          vold[q * DIM + d] = nbk[GridDof::P + d] - dt * nbk[GridDof::F + d];
+          acm[d] += m[q] * nbk[GridDof::F + d] / msum;
+        }
+      }
+      // a continuum body with a tail share: its own f/m is unreliable there (interface.hpp)
+      for (int q = 0; q < k; ++q)
+        if (ids[q] % 2 == 0 && m[q] < prm.tail_share * msum)
+          for (int d = 0; d < DIM; ++d) v[q * DIM + d] = vold[q * DIM + d] + dt * acm[d];
+      StackFace faces[MAXB];
+      StackFaceResult res[MAXB];
+      for (int q = 0; q + 1 < k; ++q) {
+        faces[q] = face_between(chains, ids[q], ids[q + 1]);
+        if (nn <= kNoNormal) faces[q].type = FaceType::Bonded;
+        if (faces[q].adhesion > 0) { // capacity: adhesion times the sheet length at the node
+          double len = 0;
+          for (const Chain &c : chains)
+            if (c.body >= ids[q] && c.body <= ids[q + 1]) len += node[c.slot + ChainDof::LEN];
+          faces[q].adhesion *= len * dt;
+        }
+      }
+      const double nu[DIM] = {nn > kNoNormal ? n[0] / nn : 0.0, nn > kNoNormal ? n[1] / nn : 1.0};
+      contact_stack(k, m, v, faces, nu, res);
+      st.contact_nodes += 1;
+      bool slipped = false, separated = false;
+      for (int q = 0; q + 1 < k; ++q) {
+        slipped = slipped || res[q].slip;
+        separated = separated || !res[q].contact;
+        if (res[q].normal > 0)
+          st.compression += res[q].normal;
+        else
+          st.tension -= res[q].normal;
+        // on the chain's slots: its faces' normal and friction impulses (friction along tau =
+        // -t, t = (-n_y, n_x) being contact_stack's tangent)
+        for (size_t ci = 0; ci < chains.size(); ++ci) {
+          const Chain &c = chains[ci];
+          if (c.body == ids[q]) { // the chain is the lower body: its top face
+            node[c.slot + ChainDof::NTOP] += res[q].normal;
+            node[c.slot + ChainDof::STOP] -= res[q].tangential;
+            st.friction[ci] -= res[q].tangential / dt;
+          } else if (c.body == ids[q + 1]) { // the upper body: its bottom face
+            node[c.slot + ChainDof::NBOT] += res[q].normal;
+            node[c.slot + ChainDof::SBOT] += res[q].tangential;
+            st.friction[ci] += res[q].tangential / dt;
+          }
+        }
+      }
+      if (slipped) st.slip_nodes += 1;
+      if (separated) st.separated_nodes += 1;
+      for (int q = 0; q < k; ++q) {
+        double *nbk = node + ids[q] * ND;
+        for (int d = 0; d < DIM; ++d) {
+          const double vn = held[d] ? 0.0 : v[q * DIM + d];
+          nbk[GridDof::P + d] = vn;
+          nbk[GridDof::F + d] = held[d] ? 0.0 : (vn - vold[q * DIM + d]) / dt;
+        }
+      }
+    }
+}
+
+} // namespace pmpm

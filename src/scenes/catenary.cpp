@@ -1,0 +1,122 @@
+// The elastic catenary (FIELD.md 3.1): one membrane chain alone, pinned at both ends at equal
+// height, initially straight and unstressed, sagging under its own weight w = gamma t. The
+// closed form (Irvine 1981, ch. 1) for span l = L0, stiffness J:
+//   H L0 / J + (2 H / w) asinh(w L0 / (2 H)) = l,
+//   sag = w L0^2 / (8 J) + (H / w) (sqrt(1 + (V / H)^2) - 1),  V = w L0 / 2,
+//   T(s) = sqrt(H^2 + (w s - V)^2), strain T / J (largest at the supports).
+// -catenary_offset dx,dy moves the whole chain by a fraction of a cell against the grid.
+#include "pmpm/output.hpp"
+#include "pmpm/scene_util.hpp"
+#include <cmath>
+
+namespace pmpm {
+
+namespace {
+struct CatenaryExact {
+  double H, V, sag, strain_mid, strain_support, tension_mid;
+};
+CatenaryExact SolveCatenary(double l, double L0, double w, double J) {
+  auto g = [&](double H) { return H * L0 / J + 2 * H / w * std::asinh(w * L0 / (2 * H)) - l; };
+  double lo = 1e-12 * w * L0, hi = 1e3 * (w * L0 + J); // g(lo) < 0 < g(hi)
+  for (int it = 0; it < 300; ++it) {
+    const double m = std::sqrt(lo * hi);
+    (g(m) < 0 ? lo : hi) = m;
+  }
+  CatenaryExact e;
+  e.H = std::sqrt(lo * hi);
+  e.V = 0.5 * w * L0;
+  e.sag = w * L0 * L0 / (8 * J) + e.H / w * (std::sqrt(1 + (e.V / e.H) * (e.V / e.H)) - 1);
+  e.tension_mid = e.H;
+  e.strain_mid = e.H / J;
+  e.strain_support = std::hypot(e.H, e.V) / J;
+  return e;
+}
+} // namespace
+
+class CatenaryScene final : public Scene {
+  double span_ = 10, t_ = 0.0015, off_[DIM] = {0, 0};
+  CatenaryExact ex_{};
+  double y0_ = 0;
+
+public:
+  PetscErrorCode setup(Simulation &sim) override {
+    PetscInt n = DIM;
+    PetscFunctionBeginUser;
+    PetscOptionsBegin(sim.comm, "catenary_", "Catenary: one chain pinned at both ends", nullptr);
+    PetscCall(PetscOptionsReal("-span", "Span l between the supports (m), > 0", nullptr, span_,
+                               &span_, nullptr));
+    PetscCall(PetscOptionsRealArray("-offset",
+                                    "Shift of the chain against the grid, dx,dy (m; a fraction "
+                                    "of a cell tests grid independence)",
+                                    nullptr, off_, &n, nullptr));
+    PetscOptionsEnd();
+    PetscOptionsBegin(sim.comm, "membrane_", "The membrane", nullptr);
+    PetscCall(
+        PetscOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
+    PetscOptionsEnd();
+    PetscCheck(span_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-catenary_span must be > 0 (got %g)", span_);
+    const double h = sim.set.h;
+    ChainSpec cs;
+    cs.name = "membrane";
+    cs.material = "membrane";
+    cs.thickness = t_;
+    cs.pin_start = cs.pin_end = true;
+    // the closed form sizes the box: two cells beside the supports, the sag plus two cells below
+    Chain probe;
+    {
+      ChainSpec ps = cs;
+      ps.line = {0, 0, span_, 0};
+      PetscCall(ChainCreate(sim.comm, ps, span_, probe));
+    }
+    ex_ = SolveCatenary(span_, span_, probe.line_weight, probe.law.J);
+    sim.ncell[0] = static_cast<PetscInt>(std::ceil(span_ / h - 1e-9)) + 4;
+    sim.ncell[1] = static_cast<PetscInt>(std::ceil(1.2 * ex_.sag / h)) + 5;
+    sim.origin[0] = -2 * h;
+    sim.origin[1] = -(sim.ncell[1] - 3) * h;
+    y0_ = 0.5 * h + off_[1];
+    cs.line = {off_[0], y0_, off_[0] + span_, y0_};
+    PetscCheck(std::fabs(off_[0]) < h && std::fabs(off_[1]) < h, sim.comm,
+               PETSC_ERR_ARG_OUTOFRANGE, "-catenary_offset must be within one cell (|d| < %g m)",
+               h);
+    sim.chain_specs.push_back(cs);
+    for (int f = 0; f < 2 * DIM; ++f) sim.face[f] = FaceBC::Free;
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode generate(Simulation &, std::vector<ParticleInit> &) override { return 0; }
+
+  PetscErrorCode results(Simulation &sim, std::string &json) override {
+    PetscFunctionBeginUser;
+    const Chain &c = sim.chains[0];
+    // mid-span: the point at s = L0 / 2 (the point count is odd for an even division) or the
+    // mean of the two around it; strains: the segments there and at the supports
+    const int im = (c.n - 1) / 2, jm = c.n / 2;
+    const double ymid = 0.5 * (c.x[im * DIM + 1] + c.x[jm * DIM + 1]);
+    const int k0 = std::max(0, c.n / 2 - 1), k1 = std::min(c.n - 2, (c.n - 1) / 2);
+    const double eps_mid = 0.5 * (c.eps[k0] + c.eps[k1]), T_mid = 0.5 * (c.T[k0] + c.T[k1]);
+    // support strain: extrapolate the first two segments' strains to s = 0 (they sit at s =
+    // l0/2 and 3 l0/2) and likewise at the other end
+    auto end = [&](int a, int b) { return 1.5 * c.eps[a] - 0.5 * c.eps[b]; };
+    const double eps_sup = 0.5 * (end(0, 1) + end(c.n - 2, c.n - 3));
+    const char *sep = ",\n    ";
+    json = json_kv("span", span_) + sep + json_kv("thickness", t_) + sep +
+           json_kv("weight_per_length", c.line_weight) + sep +
+           json_kv("axial_stiffness", c.law.J) + sep + json_kv("points", double(c.n)) + sep +
+           json_kv("sag", y0_ - ymid) + sep + json_kv("sag_exact", ex_.sag) + sep +
+           json_kv("strain_mid", eps_mid) + sep + json_kv("strain_mid_exact", ex_.strain_mid) +
+           sep + json_kv("strain_support", eps_sup) + sep +
+           json_kv("strain_support_exact", ex_.strain_support) + sep +
+           json_kv("tension_mid", T_mid) + sep + json_kv("tension_mid_exact", ex_.tension_mid) +
+           sep + json_kv("horizontal_reaction", -c.reaction[0][0]) + sep +
+           json_kv("vertical_reaction", c.reaction[0][1]) + sep +
+           json_kv("vertical_reaction_exact", ex_.V);
+    PetscFunctionReturn(0);
+  }
+};
+
+std::unique_ptr<Scene> make_catenary_scene() {
+  return std::make_unique<CatenaryScene>();
+}
+
+} // namespace pmpm
