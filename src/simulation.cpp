@@ -371,10 +371,10 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   for (int f = 0; f < 2 * DIM; ++f) sim.iface.face[f] = sim.face[f];
 
   // Membrane chains: each a body between the material below and above it (chain.hpp).
+  PetscBool chain_scaling = PETSC_TRUE;
   PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
   PetscCall(PetscOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
                              sim.chain_spacing, &sim.chain_spacing, nullptr));
-  PetscBool chain_scaling = PETSC_TRUE;
   PetscCall(PetscOptionsBool("-chain_inertia_scaling",
                              "Scale each chain's mass so its axial wave is no faster than the "
                              "fastest continuum material's (the load is unchanged); applies "
