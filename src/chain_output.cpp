@@ -51,7 +51,7 @@ PetscErrorCode OutputChains(Simulation &sim) {
         bool slack;
         point_segment_values(c, i, eps, T, slack);
         const double *x = &c.x[i * DIM], *x0 = &c.x0[i * DIM];
-        std::fprintf(f, "%.9g,%.9g,%.9g,%.12g,%.12g,%.9g,%.9g,%.9g,%.9g,%d,%.9g,%.9g,%.9g,%.9g\n",
+        std::fprintf(f, "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%d,%.15g,%.15g,%.15g,%.15g\n",
                      s0, x0[0], x0[1], x[0], x[1], x[0] - x0[0], x[1] - x0[1], eps, T,
                      slack ? 1 : 0, c.slip_top[i], c.slip_bot[i], c.p_top[i], c.p_bot[i]);
       }

@@ -305,6 +305,10 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
              "-scene %s is unknown; allowed: bar, column, landfill, incline, layers, block, "
              "catenary, pullout, trench",
              sim.set.scene.c_str());
+  PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
+  PetscCall(PetscOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
+                             sim.chain_spacing, &sim.chain_spacing, nullptr));
+  PetscOptionsEnd();
   PetscCall(sim.scene->setup(sim));
   PetscCall(BoundaryFromOptions(sim));
   PetscCheck(!sim.mats.empty() || !sim.chain_specs.empty(), sim.comm, PETSC_ERR_PLIB,
@@ -373,8 +377,6 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   // Membrane chains: each a body between the material below and above it (chain.hpp).
   PetscBool chain_scaling = PETSC_TRUE;
   PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
-  PetscCall(PetscOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
-                             sim.chain_spacing, &sim.chain_spacing, nullptr));
   PetscCall(PetscOptionsBool("-chain_inertia_scaling",
                              "Scale each chain's mass so its axial wave is no faster than the "
                              "fastest continuum material's (the load is unchanged); applies "

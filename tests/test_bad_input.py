@@ -27,6 +27,23 @@ cases = [
                                            "-interface_tail_share", "0.7"], "-interface_tail_share"),
     ("unknown interface normals", ["-options_file", "options/incline.opts",
                                    "-interface_normals", "mass"], "-interface_normals"),
+    ("unknown membrane law", ["-options_file", "options/catenary.opts", "-mat_membrane_law",
+                              "rubber"], "-mat_membrane_law"),
+    ("membrane yield stress missing", ["-options_file", "options/catenary.opts",
+                                       "-mat_membrane_law", "elastoplastic"],
+     "-mat_membrane_yield_stress"),
+    ("interface friction angle above 60", ["-options_file", "options/catenary.opts",
+                                           "-chain_membrane_delta_top", "75"],
+     "-chain_membrane_delta_top"),
+    ("negative adhesion", ["-options_file", "options/catenary.opts",
+                           "-chain_membrane_adhesion_bottom", "-1"], "-chain_membrane_adhesion_bottom"),
+    ("chain spacing out of range", ["-options_file", "options/catenary.opts", "-chain_spacing", "2"],
+     "-chain_spacing"),
+    ("zero membrane thickness", ["-options_file", "options/catenary.opts", "-membrane_thickness",
+                                 "0"], "-membrane_thickness"),
+    ("chain and layers together", ["-options_file", "options/landfill.opts",
+                                   "-landfill_membrane_chain", "-landfill_membrane_layers", "1"],
+     "-landfill_membrane_chain"),
 ]
 for what, args, needle in cases:
     d = f"{out}/{what.replace(' ', '_')}"

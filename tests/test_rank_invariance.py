@@ -1,10 +1,13 @@
-"""The same scene on 1 and 2 ranks agrees to 1e-10 relative in every particle position and stress.
+"""The same scene on 1 and 2 ranks agrees to 1e-10 relative in every particle position and stress,
+and in every membrane-chain point's position, strain and tension (chain_<name>.csv).
 
 usage: test_rank_invariance.py EXE OUTDIR OPTIONS_FILE [extra options]
 Both runs take the same fixed number of steps (-tol tiny, so neither stops early at a different
 step): what remains is the summation order of ghost contributions, i.e. round-off. Positions are
 compared relative to the domain size, stresses relative to the largest stress magnitude.
 """
+import glob
+import os
 import sys
 import numpy as np
 from pmpmtest import Checks, particles, run
@@ -20,11 +23,23 @@ for np_ in (1, 2):
 ids1, f1 = res[1]
 ids2, f2 = res[2]
 c.check("same particle ids on 1 and 2 ranks", np.array_equal(ids1, ids2), f"({len(ids1)} particles)")
-if np.array_equal(ids1, ids2):
+if np.array_equal(ids1, ids2) and len(ids1):
     scale_x = np.abs(f1["position"]).max()
     dx = np.abs(f1["position"] - f2["position"]).max() / scale_x
     scale_s = np.abs(f1["stress"]).max()
     ds = np.abs(f1["stress"] - f2["stress"]).max() / scale_s
     c.le("max position difference / domain size", dx, 1e-10)
     c.le("max stress difference / max |stress|", ds, 1e-10)
+for f in sorted(glob.glob(f"{out}/np1/chain_*.csv")):
+    chain = os.path.basename(f)
+    a = np.genfromtxt(f, delimiter=",", names=True)
+    b = np.genfromtxt(f"{out}/np2/{chain}", delimiter=",", names=True)
+    c.check(f"{chain}: same points on 1 and 2 ranks", a.shape == b.shape, f"({a.shape[0]} points)")
+    if a.shape == b.shape:
+        scale = max(np.abs(a["x"]).max(), np.abs(a["y"]).max())
+        dx = max(np.abs(a["x"] - b["x"]).max(), np.abs(a["y"] - b["y"]).max()) / scale
+        c.le(f"{chain}: max position difference / extent", dx, 1e-10)
+        for k in ("strain", "tension"):
+            scale = max(np.abs(a[k]).max(), 1e-300)
+            c.le(f"{chain}: max {k} difference / max |{k}|", np.abs(a[k] - b[k]).max() / scale, 1e-10)
 c.done()

@@ -10,13 +10,14 @@
 //   f_i = T_i tau_i - T_{i-1} tau_{i-1}      (tau_k the unit vector along segment k).
 //
 // On the grid a chain is a body of its own (bodies: the material below a chain is body b - 1,
-// the chain b, the material above b + 1). Its points reach the nodes through uGIMP blocks of one
-// cell (half-size h/2 in both directions) whatever their spacing, so every node that both
-// neighbours of the sheet reach also sees the sheet and its normal: the chain's geometry sums
-// (ChainDof) give the contact normal at a node as the weighted mean of its points' normals
-// (the paper's single-layer rule: the normal of point i is perpendicular to x_{i+1} - x_{i-1}).
-// contact_stack.hpp resolves the stacked bodies at each node: no interpenetration, separation
-// where the faces pull apart (contact) or not (paper, bonded), Coulomb friction per face.
+// the chain b, the material above b + 1). Its points reach the nodes through uGIMP blocks one
+// cell long along the sheet and thin across it (chain.cpp, point_halfsize), so the sheet touches
+// the nodes of the cells it crosses: exactly the nodes both its neighbours share. The chain's
+// geometry sums (ChainDof) give the contact normal at a node as the weighted mean of its points'
+// normals (the paper's single-layer rule: the normal of point i is perpendicular to
+// x_{i+1} - x_{i-1}). contact_stack.hpp resolves the stacked bodies at each node: no
+// interpenetration, separation where the faces pull apart (contact) or not (paper, bonded),
+// Coulomb friction per face.
 //
 // Distribution: a chain has O(width / h) points against O(area / h^2) particles, so every rank
 // holds all its points. The rank owning a point's cell (DMSwarm's rule, Grid::owns_cell) maps it

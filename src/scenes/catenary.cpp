@@ -56,6 +56,8 @@ public:
     PetscOptionsEnd();
     PetscCheck(span_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-catenary_span must be > 0 (got %g)", span_);
+    PetscCheck(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-membrane_thickness must be > 0 (got %g)", t_);
     const double h = sim.set.h;
     ChainSpec cs;
     cs.name = "membrane";

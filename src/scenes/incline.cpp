@@ -5,6 +5,17 @@
 //   tan theta <= mu: the block sticks (a = 0);  otherwise a = g (sin theta - mu cos theta).
 // Undamped dynamics; the block's acceleration is the least-squares slope of its centre-of-mass
 // velocity over the second half of the run (after the start-up transient).
+//
+// -incline_chain: a membrane chain ("membrane", -mat_membrane_*, -membrane_thickness) lies on the
+// base's top surface from one cell inside its left end to one cell inside its right end (a chain
+// point's one-cell block must stay on the grid), and the block rests on it. The particles below
+// the chain (the base) are body 0, those above (the block) body 2; contact_stack resolves them
+// at the nodes with the chain's normals (exactly the surface's normal: no corner normals, so no
+// colour is needed). Friction between block and sheet is the chain's upper face
+// (-interface_mu_top, or -chain_membrane_mu_top); its lower face (-interface_mu_bottom) should
+// be rough enough to hold the sheet on the base, so the exact solution is the block sliding on a
+// fixed sheet, as above with mu the upper face's. The ends are free (-incline_chain_pin pins both,
+// as supports); results add the sheet's largest displacement.
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
 #include <cmath>
@@ -13,6 +24,8 @@ namespace pmpm {
 
 class InclineScene final : public Scene {
   double theta_ = 30, Lb_ = 0.2, Hb_ = 0.1, Lbase_ = 1.0, Hbase_ = 0.1, x0_ = 0.1;
+  PetscBool chain_ = PETSC_FALSE, pin_ = PETSC_FALSE; // a membrane chain under the block
+  double thickness_ = 0.0015;                         // its thickness (m)
   std::vector<double> t_, v_, s_; // rank 0: time, block velocity and displacement along x
 
 public:
@@ -31,6 +44,18 @@ public:
                                nullptr));
     PetscCall(PetscOptionsReal("-block_x", "Block's left end at the start (m)", nullptr, x0_, &x0_,
                                nullptr));
+    PetscCall(
+        PetscOptionsBool("-chain",
+                         "A membrane chain (-mat_membrane_*, -membrane_thickness) on the "
+                         "base's top surface, under the block: friction on its upper face "
+                         "(-interface_mu_top), its lower face (-interface_mu_bottom) holds it",
+                         nullptr, chain_, &chain_, nullptr));
+    PetscCall(PetscOptionsBool("-chain_pin", "Pin both ends of the membrane chain (supports)",
+                               nullptr, pin_, &pin_, nullptr));
+    PetscOptionsEnd();
+    PetscOptionsBegin(sim.comm, "membrane_", "The membrane (with -incline_chain)", nullptr);
+    PetscCall(PetscOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, thickness_,
+                               &thickness_, nullptr));
     PetscOptionsEnd();
     PetscCheck(theta_ >= 0 && theta_ <= 80, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-incline_angle must be in [0, 80] degrees (got %g)", theta_);
@@ -52,6 +77,23 @@ public:
     PetscCall(MaterialFromOptions(sim.comm, "base", sim.mats[1]));
     PetscCheck(sim.set.inertia == InertiaScaling::None, sim.comm, PETSC_ERR_USER_INPUT,
                "the incline is dynamic: use -inertia_scaling none and give -mat_block_density");
+    if (chain_) {
+      const double h = sim.set.h;
+      PetscCheck(x0_ >= h - 1e-9 * h && x0_ + Lb_ <= Lbase_ - h + 1e-9 * h, sim.comm,
+                 PETSC_ERR_ARG_OUTOFRANGE,
+                 "-incline_block_x: with -incline_chain the block must start on the chain, which "
+                 "ends one cell (%g m) inside each end of the base",
+                 h);
+      ChainSpec cs;
+      cs.name = "membrane";
+      cs.material = "membrane";
+      PetscCheck(thickness_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-membrane_thickness must be > 0 (got %g)", thickness_);
+      cs.thickness = thickness_;
+      cs.pin_start = cs.pin_end = pin_;
+      cs.line = {h, Hbase_, Lbase_ - h, Hbase_};
+      sim.chain_specs.push_back(cs);
+    }
     PetscFunctionReturn(0);
   }
 
@@ -69,7 +111,8 @@ public:
     // The base carries colour 1: its top is flat across the whole contact, so the colour-gradient
     // normals there are exact; a coloured block would give 45-degree normals at its corners,
     // whose normal constraint locks the sliding. Friction acts on the base's upper face.
-    for (auto &q : out) q.colour = q.mat == 1 ? 1.0 : 0.0;
+    // With the chain the bodies come from the chain's line and its normals: no colour.
+    for (auto &q : out) q.colour = q.mat == 1 && !chain_ ? 1.0 : 0.0;
     PetscFunctionReturn(0);
   }
 
@@ -95,8 +138,12 @@ public:
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     PetscFunctionBeginUser;
     const MaterialEntry &b = sim.mats[0];
-    const double g = b.gamma / b.density, th = theta_ * M_PI / 180, mu = sim.iface.mu_top;
-    const bool bonded = sim.iface.type == InterfaceType::Bonded;
+    const double g = b.gamma / b.density, th = theta_ * M_PI / 180;
+    // with the chain: its upper face (the -interface_* defaults or -chain_membrane_* overrides)
+    const Chain *c = sim.chains.empty() ? nullptr : &sim.chains[0];
+    const double mu = c ? c->top.mu : sim.iface.mu_top;
+    const bool bonded =
+        c ? c->top.type == FaceType::Bonded : sim.iface.type == InterfaceType::Bonded;
     const bool sticks = bonded || std::tan(th) <= mu;
     const double a_exact = sticks ? 0.0 : g * (std::sin(th) - mu * std::cos(th));
     // least-squares slope of v(t) over the second half of the run
@@ -115,8 +162,19 @@ public:
            json_kv("displacement", s_.empty() ? 0.0 : s_.back()) + sep +
            json_kv("displacement_exact", 0.5 * a_exact * T * T) + sep +
            "\"sticks_exact\": " + (sticks ? "true" : "false") + sep +
-           json_kv("contact_nodes", sim.iface_stats.contact_nodes) + sep +
-           json_kv("slip_nodes", sim.iface_stats.slip_nodes);
+           json_kv("contact_nodes",
+                   c ? sim.contact_stats.contact_nodes : sim.iface_stats.contact_nodes) +
+           sep +
+           json_kv("slip_nodes", c ? sim.contact_stats.slip_nodes : sim.iface_stats.slip_nodes);
+    if (c) { // the sheet should stay where it was laid: its largest displacement along x and y
+      double ux = 0, uy = 0;
+      for (int i = 0; i < c->n; ++i) {
+        ux = std::fmax(ux, std::fabs(c->x[i * DIM] - c->x0[i * DIM]));
+        uy = std::fmax(uy, std::fabs(c->x[i * DIM + 1] - c->x0[i * DIM + 1]));
+      }
+      json += sep + json_kv("sheet_max_displacement_x", ux) + sep +
+              json_kv("sheet_max_displacement_y", uy);
+    }
     PetscFunctionReturn(0);
   }
 };

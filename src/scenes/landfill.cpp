@@ -1,8 +1,14 @@
 // The landfill cover of the seed paper, Section 4 (Figure 6, Table I; REFERENCE.md 1.1-1.4):
 // waste 30 mm, geomembrane 1 mm, cover soil 8 mm, 30 mm wide, a soft 6 mm-diameter zone just
 // below the membrane at X = 15 mm; base fixed, sides on rollers, plane strain; unit weights of
-// Table I applied as body forces. The membrane can be the regular particle fill or N layers of
-// particles across its thickness (N = 1 is the paper's single layer).
+// Table I applied as body forces. The membrane can be the regular particle fill, N layers of
+// particles across its thickness (N = 1 is the paper's single layer), or a membrane chain
+// (-landfill_membrane_chain, chain.hpp): a line of points at the top of the membrane layer
+// (y = 31 mm) whose 1 mm of thickness is a property. The layer it leaves is given to the waste
+// (the closest material: E 131.7 against 207 MPa, a weight of 2e3 against 9.6e3 N/m^2 under
+// 1.2e7 N/m^2 of cover soil), so the soft zone lies 1 mm below the sheet and the heights and
+// loads are the paper's; its ends lie next to the roller walls, which hold them horizontally as
+// they hold the resolved membrane's ends.
 //
 // Results: the membrane's mid-surface profile (per column of membrane particles: position,
 // displacement, chain strain = current/initial length of the mid-surface chain, the particles'
@@ -31,13 +37,40 @@ class LandfillScene final : public Scene {
   // geometry (m)
   double W_ = 0.030, Hw_ = 0.030, t_ = 0.001, Hs_ = 0.008, D_ = 0.006, Xc_ = 0.015;
   PetscInt layers_ = 0;
+  PetscBool chain_ = PETSC_FALSE;
   std::vector<ProfilePoint> prof_;        // rank 0: membrane mid-surface profile
   double slip_top_ = 0, slip_bottom_ = 0; // rank 0: max relative x displacement at the faces
+
+  // The chain is the profile (every rank holds it).
+  void ChainProfile(const Simulation &sim) {
+    const Chain &c = sim.chains[0];
+    prof_.clear();
+    double s0 = 0;
+    for (int i = 0; i < c.n; ++i) {
+      ProfilePoint q{};
+      q.x0 = c.x0[i * DIM];
+      q.y0 = c.x0[i * DIM + 1];
+      q.x = c.x[i * DIM];
+      q.y = c.x[i * DIM + 1];
+      const int a = std::max(i - 1, 0), b = std::min(i, c.n - 2);
+      q.strain_chain = q.strain_particle = 0.5 * (c.eps[a] + c.eps[b]);
+      q.stress_axial = 0.5 * (c.T[a] + c.T[b]) / c.thickness;
+      if (i > 0) s0 += c.l0[i - 1];
+      q.s0 = s0;
+      prof_.push_back(q);
+      slip_top_ = std::fmax(slip_top_, std::fabs(c.slip_top[i]));
+      slip_bottom_ = std::fmax(slip_bottom_, std::fabs(c.slip_bot[i]));
+    }
+  }
 
   // Gather the membrane particles to rank 0 and reduce them to a mid-surface profile.
   PetscErrorCode BuildProfile(Simulation &sim) {
     ParticleView P;
     PetscFunctionBeginUser;
+    if (chain_) {
+      ChainProfile(sim);
+      PetscFunctionReturn(0);
+    }
     constexpr int NF = 8; // x0 y0 x y strain_particle stress_axial volume0 kind
     std::vector<double> mine;
     const double dx = sim.set.h / sim.set.ppc, ytop = Hw_ + t_, ybot = Hw_;
@@ -177,12 +210,20 @@ public:
                               "Particle layers across the membrane: 0 = the "
                               "regular fill (ppc per cell), N >= 1 = N layers (1: the paper's)",
                               nullptr, layers_, &layers_, nullptr));
+    PetscCall(PetscOptionsBool("-membrane_chain",
+                               "The membrane as a chain of points on top of the membrane layer "
+                               "(its thickness a property; -mat_membrane_law, -interface_type)",
+                               nullptr, chain_, &chain_, nullptr));
     PetscOptionsEnd();
     PetscInt nW, nWaste, nT, nS;
     PetscCall(CheckCells(sim.comm, "-landfill_width", W_, sim.set.h, &nW));
     PetscCall(CheckCells(sim.comm, "-landfill_waste_height", Hw_, sim.set.h, &nWaste));
     PetscCall(CheckCells(sim.comm, "-landfill_soil_height", Hs_, sim.set.h, &nS));
-    if (layers_ == 0)
+    PetscCheck(!(chain_ && layers_ > 0), sim.comm, PETSC_ERR_ARG_INCOMP,
+               "-landfill_membrane_chain and -landfill_membrane_layers %" PetscInt_FMT
+               " exclude each other",
+               layers_);
+    if (layers_ == 0 && !chain_)
       PetscCall(CheckCells(sim.comm,
                            "-landfill_membrane_thickness (with -landfill_membrane_layers 0)", t_,
                            sim.set.h, &nT));
@@ -211,17 +252,28 @@ public:
     sim.face[YMIN] = FaceBC::Fixed;
     sim.mats.resize(4);
     for (int m = 0; m < 4; ++m) PetscCall(MaterialFromOptions(sim.comm, kMatNames[m], sim.mats[m]));
+    if (chain_) {
+      ChainSpec cs;
+      cs.name = "membrane";
+      cs.material = "membrane";
+      cs.thickness = t_;
+      // ends half a point spacing inside the walls, as particle centres are (a point on the
+      // wall itself would move with the interior node beside it, and could leave the box)
+      const double e = 0.5 * sim.chain_spacing * sim.set.h;
+      cs.line = {e, Hw_ + t_, W_ - e, Hw_ + t_};
+      sim.chain_specs.push_back(cs);
+    }
     PetscFunctionReturn(0);
   }
 
   PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
     PetscFunctionBeginUser;
     const double Hw = Hw_, t = t_, top = Hw_ + t_ + Hs_, r = D_ / 2, xc = Xc_, yc = Hw_ - D_ / 2;
-    const bool layered = layers_ > 0;
+    const bool layered = layers_ > 0, chain = chain_;
     auto at = [=](const double x[DIM]) -> int {
       if (x[1] >= top) return -1;
       if (x[1] >= Hw + t) return SOIL;
-      if (x[1] >= Hw) return layered ? -1 : MEMBRANE;
+      if (x[1] >= Hw) return chain ? WASTE : layered ? -1 : MEMBRANE;
       if ((x[0] - xc) * (x[0] - xc) + (x[1] - yc) * (x[1] - yc) < r * r) return SOFT;
       return WASTE;
     };
@@ -272,7 +324,8 @@ public:
     }
     double pk_particle = -1e300;
     for (const auto &q : prof_) pk_particle = std::fmax(pk_particle, q.strain_particle);
-    const double gamma = sim.mats[SOIL].gamma, E = sim.mats[MEMBRANE].el.E;
+    const double gamma = sim.mats[SOIL].gamma;
+    const double E = chain_ ? sim.chains[0].E : sim.mats[MEMBRANE].el.E;
     std::string paper = "null", selfc = "null";
     try {
       const auto gp = giroud::paper_form(gamma, D_, Hs_, 0.0, t_, sag);
@@ -296,9 +349,13 @@ public:
            json_kv("peak_axial_stress", prof_[smax].stress_axial) + sep +
            json_kv("peak_axial_stress_x", prof_[smax].x0) + sep +
            json_kv("min_axial_stress", prof_[smin].stress_axial) + sep +
-           json_kv("membrane_layers", double(layers_)) + sep + json_kv("max_slip_top", slip_top_) +
+           json_kv("membrane_layers", double(layers_)) + sep +
+           "\"membrane_chain\": " + (chain_ ? "true" : "false") + sep +
+           json_kv("max_slip_top", slip_top_) +
            sep + json_kv("max_slip_bottom", slip_bottom_) + sep + "\"interface\": \"" +
-           InterfaceTypeNames[(int)sim.iface.type] + "\"" + sep +
+           (chain_ ? FaceTypeNames[(int)sim.chains[0].top.type]
+                   : InterfaceTypeNames[(int)sim.iface.type]) +
+           "\"" + sep +
            "\"giroud\": {\"paper\": " + paper + ", \"self_consistent\": " + selfc + "}";
     PetscFunctionReturn(0);
   }
