@@ -6,8 +6,6 @@
 namespace pmpm {
 
 namespace {
-// A body's share of a node's mass at or below this is round-off (it does not reach the node).
-constexpr double kRoundOff = 1e-12;
 // Below this the chains' normal sum at a node is round-off: no normal, the bodies move as one.
 constexpr double kNoNormal = 1e-300;
 
@@ -255,8 +253,7 @@ void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &
   }
 }
 
-void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm,
-               ChainG2PStats &st) {
+void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm) {
   Weights<UGIMPShape> W;
   constexpr int NS = UGIMPShape::NS, ND = GridDof::NDOF;
   double lp[DIM];
@@ -298,25 +295,28 @@ void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &p
         }
         ma += wa;
         mb += wb;
-        nt += w * ns[ChainDof::NTOP];
-        nbt += w * ns[ChainDof::NBOT];
+        nt += w * std::fmax(ns[ChainDof::NTOP], 0.0);
+        nbt += w * std::fmax(ns[ChainDof::NBOT], 0.0);
         len += w * ns[ChainDof::LEN];
       }
+
     for (int d = 0; d < DIM; ++d) v[d] = (1.0 - pic) * (v[d] + dt * ag[d]) + pic * vg[d];
     const double vt = vg[0] * tau[0] + vg[1] * tau[1];
     if (ma > 0) c.slip_top[i] += dt * (vt - (va[0] * tau[0] + va[1] * tau[1]) / ma);
     if (mb > 0) c.slip_bot[i] += dt * (vt - (vb[0] * tau[0] + vb[1] * tau[1]) / mb);
+    // contact pressure: the compressive normal impulse over the sheet length it acts on
     c.p_top[i] = len > 0 ? nt / (dt * len) : 0.0;
     c.p_bot[i] = len > 0 ? nbt / (dt * len) : 0.0;
     x[0] += dt * vg[0];
     x[1] += dt * vg[1];
-    if (!std::isfinite(x[0] + x[1] + v[0] + v[1])) ++st.bad;
   }
 }
 
-// Owner's values, zeros elsewhere: x, v, slips, pressures per point (+ 1 ownership count).
+// Owner's values, zeros elsewhere: x, v, slips, pressures, contact stencil per point (+ 1
+// ownership count).
+constexpr int kPack = 2 * DIM + 5;
 void chain_pack(const Chain &c, std::vector<double> &buf) {
-  constexpr int W = 2 * DIM + 5;
+  constexpr int W = kPack;
   buf.assign(static_cast<size_t>(c.n) * W, 0.0);
   for (int i = 0; i < c.n; ++i) {
     if (!c.owned[i]) continue;
@@ -334,7 +334,7 @@ void chain_pack(const Chain &c, std::vector<double> &buf) {
 }
 
 void chain_unpack(Chain &c, const std::vector<double> &buf) {
-  constexpr int W = 2 * DIM + 5;
+  constexpr int W = kPack;
   for (int i = 0; i < c.n; ++i) {
     const double *b = &buf[static_cast<size_t>(i) * W];
     for (int d = 0; d < DIM; ++d) {
@@ -349,10 +349,56 @@ void chain_unpack(Chain &c, const std::vector<double> &buf) {
 }
 
 int chain_owner_count(const std::vector<double> &buf, int n) {
-  constexpr int W = 2 * DIM + 5;
+  constexpr int W = kPack;
   int k = 0;
   for (int i = 0; i < n; ++i) k += buf[static_cast<size_t>(i) * W + 2 * DIM + 4] == 1.0;
   return k;
+}
+
+void chain_friction_capacity(const GridView &L, const GridView &G, const std::vector<Chain> &chains) {
+  Weights<UGIMPShape> W;
+  constexpr int NS = UGIMPShape::NS;
+  double lp[DIM], tau[DIM], nrm[DIM];
+  for (const Chain &c : chains)
+    for (int i = 0; i < c.n; ++i) {
+      if (pinned(c, i)) continue;
+      const double *x = &c.x[i * DIM];
+      point_frame(c, i, tau, nrm);
+      point_halfsize(L, x, tau, lp);
+      weights<UGIMPShape>(x, lp, L.origin, L.h, W);
+      // only points whose stencil lies in this rank's ghosted range can reach its nodes
+      if (W.base[0] < L.gs[0] || W.base[1] < L.gs[1] || W.base[0] + NS > L.gs[0] + L.gm[0] ||
+          W.base[1] + NS > L.gs[1] + L.gm[1])
+        continue;
+      // the point's pressure on each face: its stencil's normal impulse over its sheet length
+      // (every node: a node where the sheet is thin carries little of the point's length), and
+      // the weight of the nodes where that face is in contact
+      double n[2] = {0, 0}, len = 0, wc[2] = {0, 0};
+      for (int q = 0; q < NS * NS; ++q) {
+        if (W.w[q] == 0.0) continue;
+        const double *ns = L.node(W.base[0] + q % NS, W.base[1] + q / NS) + c.slot;
+        len += W.w[q] * ns[ChainDof::LEN];
+        for (int f = 0; f < 2; ++f) {
+          const double N = ns[f == 0 ? ChainDof::NTOP : ChainDof::NBOT];
+          if (N <= 0) continue;
+          n[f] += W.w[q] * N;
+          wc[f] += W.w[q];
+        }
+      }
+      // its pressure times its length, back to those nodes (the ones this rank owns)
+      for (int q = 0; q < NS * NS; ++q) {
+        if (W.w[q] == 0.0) continue;
+        const PetscInt a = W.base[0] + q % NS, b = W.base[1] + q / NS;
+        if (a < G.gs[0] || a >= G.gs[0] + G.gm[0] || b < G.gs[1] || b >= G.gs[1] + G.gm[1])
+          continue;
+        const double *ns = L.node(a, b) + c.slot;
+        double *out = G.node(a, b) + c.slot;
+        for (int f = 0; f < 2; ++f)
+          if (len > 0 && ns[f == 0 ? ChainDof::NTOP : ChainDof::NBOT] > 0)
+            out[f == 0 ? ChainDof::PTOP : ChainDof::PBOT] +=
+                W.w[q] / wc[f] * c.length[i] * n[f] / len;
+      }
+    }
 }
 
 double chain_elastic_energy(const Chain &c) {
@@ -401,12 +447,12 @@ StackFace face_between(const std::vector<Chain> &chains, int lo, int hi) {
 } // namespace
 
 void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const ContactParams &prm,
-                    ContactStats &st) {
+                    bool normal_pass, ContactStats &st) {
   constexpr int ND = GridDof::NDOF, MAXB = 8;
   const double dt = prm.dt;
   const int nb = G.nbody;
   if (nb > MAXB) return; // guarded at setup
-  st.friction.assign(chains.size(), 0.0);
+  if (!normal_pass) st.friction.assign(chains.size(), 0.0);
   for (PetscInt j = G.gs[1]; j < G.gs[1] + G.gm[1]; ++j)
     for (PetscInt i = G.gs[0]; i < G.gs[0] + G.gm[0]; ++i) {
       double *node = G.node(i, j);
@@ -414,8 +460,10 @@ void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const C
       for (int b = 0; b < nb; ++b) msum += node[b * ND + GridDof::M];
       if (msum <= 0) continue;
       int ids[MAXB], k = 0;
+      // every body with mass takes part (a share cut-off at round-off level decided differently
+      // on different rank counts); tiny shares follow the tail rule below
       for (int b = 0; b < nb; ++b)
-        if (node[b * ND + GridDof::M] > kRoundOff * msum) ids[k++] = b;
+        if (node[b * ND + GridDof::M] > 0) ids[k++] = b;
       if (k < 2) continue;
       bool held[DIM];
       held_dofs(i, j, G.ncell, prm.face, held);
@@ -465,9 +513,34 @@ void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const C
             if (c.body >= ids[q] && c.body <= ids[q + 1]) len += node[c.slot + ChainDof::LEN];
           faces[q].adhesion *= len * dt;
         }
+        // A chain face's friction capacity: mu times the sheet's contact pressure times its
+        // length at this node (chain_friction_capacity, from this step's normal pass), not mu
+        // times this node's own normal impulse; passed as an impulse capacity (the adhesion
+        // slot, counted only in contact). See chain_friction_capacity for why.
+        if (normal_pass) {
+          faces[q].mu = faces[q].adhesion = 0;
+        } else if (faces[q].type != FaceType::Bonded) {
+          for (const Chain &c : chains) {
+            const double pl = c.body == ids[q]       ? node[c.slot + ChainDof::PTOP]
+                              : c.body == ids[q + 1] ? node[c.slot + ChainDof::PBOT]
+                                                     : -1.0;
+            if (pl < 0) continue;
+            faces[q].adhesion += faces[q].mu * pl; // pl is an impulse (N s/m)
+            faces[q].mu = 0;
+            break;
+          }
+        }
       }
       const double nu[DIM] = {nn > kNoNormal ? n[0] / nn : 0.0, nn > kNoNormal ? n[1] / nn : 1.0};
       contact_stack(k, m, v, faces, nu, res);
+      if (normal_pass) { // the normal impulses only: they do not depend on the friction
+        for (int q = 0; q + 1 < k; ++q)
+          for (const Chain &c : chains) {
+            if (c.body == ids[q]) node[c.slot + ChainDof::NTOP] = res[q].normal;
+            if (c.body == ids[q + 1]) node[c.slot + ChainDof::NBOT] = res[q].normal;
+          }
+        continue;
+      }
       st.contact_nodes += 1;
       bool slipped = false, separated = false;
       for (int q = 0; q + 1 < k; ++q) {
@@ -482,11 +555,9 @@ void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const C
         for (size_t ci = 0; ci < chains.size(); ++ci) {
           const Chain &c = chains[ci];
           if (c.body == ids[q]) { // the chain is the lower body: its top face
-            node[c.slot + ChainDof::NTOP] += res[q].normal;
             node[c.slot + ChainDof::STOP] -= res[q].tangential;
             st.friction[ci] -= res[q].tangential / dt;
           } else if (c.body == ids[q + 1]) { // the upper body: its bottom face
-            node[c.slot + ChainDof::NBOT] += res[q].normal;
             node[c.slot + ChainDof::SBOT] += res[q].tangential;
             st.friction[ci] += res[q].tangential / dt;
           }

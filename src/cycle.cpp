@@ -85,7 +85,16 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     PetscCall(PetscLogEventBegin(ev_contact, 0, 0, 0, 0));
     ContactParams cp = sim.contact;
     cp.dt = dt;
-    contact_bodies(G, sim.chains, cp, rep.contact);
+    // normal impulses, their ghosts, the friction capacity they give the sheet, then the contact
+    contact_bodies(G, sim.chains, cp, true, rep.contact);
+    PetscCall(GridRestoreGlobal(g, G));
+    PetscCall(GridGlobalToLocal(g));
+    GridView L;
+    PetscCall(GridGetLocal(g, false, L));
+    PetscCall(GridGetGlobal(g, G));
+    chain_friction_capacity(L, G, sim.chains);
+    PetscCall(GridRestoreLocal(g, L));
+    contact_bodies(G, sim.chains, cp, false, rep.contact);
     PetscCall(PetscLogEventEnd(ev_contact, 0, 0, 0, 0));
   }
   // 3b. Interface: friction-limited velocities of body 1 and body 2 where they meet.
@@ -149,9 +158,8 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     PetscCall(GridGetLocal(g, false, G));
     std::vector<double> &buf = sim.chain_buf, part;
     buf.clear();
-    ChainG2PStats cs;
     for (Chain &c : sim.chains) {
-      g2p_chain(c, G, g, pp, cs);
+      g2p_chain(c, G, g, pp);
       chain_pack(c, part);
       buf.insert(buf.end(), part.begin(), part.end());
     }
@@ -169,6 +177,14 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
                  "grid. Enlarge the grid or reduce -cfl (now %g).",
                  sim.run.step, c.name.c_str(), c.n - owners, c.n, sim.set.cfl);
       chain_unpack(c, part);
+      for (int i = 0; i < c.n; ++i) {
+        const double *x = &c.x[i * DIM], *v = &c.v[i * DIM];
+        PetscCheck(std::isfinite(x[0] + x[1] + v[0] + v[1]), sim.comm, PETSC_ERR_NOT_CONVERGED,
+                   "Instability at step %" PetscInt_FMT ": chain %s point %d (initially at x = "
+                   "(%g, %g) m) has a non-finite position or velocity. Reduce -cfl (now %g) or "
+                   "raise -damping_alpha.",
+                   sim.run.step, c.name.c_str(), i, c.x0[i * DIM], c.x0[i * DIM + 1], sim.set.cfl);
+      }
       chain_update_tension(c);
     }
     PetscCall(PetscLogEventEnd(ev_chain, 0, 0, 0, 0));

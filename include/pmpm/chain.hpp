@@ -40,7 +40,8 @@ struct ChainDof {
   static constexpr int LEN = 2;        // sum_i w l_i (the sheet's length the node carries)
   static constexpr int NTOP = 3, NBOT = 4; // normal impulse on the upper / lower face (N s/m)
   static constexpr int STOP = 5, SBOT = 6; // friction impulse on the chain along tau, per face
-  static constexpr int NDOF = 7;
+  static constexpr int PTOP = 7, PBOT = 8; // normal impulse pooled over the sheet (N s/m)
+  static constexpr int NDOF = 9;
 };
 
 enum class StiffnessKind { PlaneStrain = 0, Uniaxial = 1 };
@@ -110,14 +111,9 @@ void chain_update_tension(Chain &c);
 // Mass, momentum, force (internal, weight, end load) and geometry of the points this rank owns
 // into body c.body's block and the chain's slots.
 void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &grid);
-// Points this rank owns: FLIP/PIC velocity, position; slip and pressure on each face from the
-// neighbouring bodies. Other ranks' points are zeroed (the caller sums over ranks).
-struct ChainG2PStats {
-  double max_v = 0, kinetic = 0, weight_power = 0;
-  PetscInt bad = 0;
-};
-void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm,
-               ChainG2PStats &st);
+// Points this rank owns (Chain::owned): FLIP/PIC velocity, position; slip and pressure on each
+// face from the neighbouring bodies. The caller shares them (chain_pack, allreduce, unpack).
+void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm);
 // Pack / unpack the fields the owner updates, for the allreduce.
 void chain_pack(const Chain &c, std::vector<double> &buf);
 void chain_unpack(Chain &c, const std::vector<double> &buf);
@@ -136,8 +132,21 @@ struct ContactStats {
   double compression = 0, tension = 0; // normal impulse this step (N s/m)
   std::vector<double> friction;        // per chain: friction force on it along its tangent (N/m)
 };
+// normal_pass: only the normal impulses (into the chains' NTOP / NBOT slots; velocities
+// untouched); then chain_friction_capacity; then the full pass with that friction capacity.
 void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const ContactParams &prm,
-                    ContactStats &st);
+                    bool normal_pass, ContactStats &st);
+// The friction capacity of each chain face at the owned nodes of G (PTOP / PBOT: sheet length
+// times contact pressure, N s/m per dt), from the normal impulses of the normal pass read from
+// the ghosted view L. Each point's pressure is its stencil's normal impulse over its sheet length,
+// over the nodes where that face is in contact, and goes back to those nodes only. The sheet
+// straddles two node rows and its force reaches them with its own weights, whereas the bodies
+// beside it press the rows unevenly: with each node's own impulse as the capacity the
+// less-pressed row slipped first and the sheet crept, holding 2 mu min(N_j, N_j+1) per column
+// instead of mu (N_j + N_j+1) (pull-out: anchored length 14 % long at h = 0.02 m, 51 % at 0.01 m).
+// Returning the pressure to the contact nodes only keeps it under the bodies' footprint (spread
+// over all of a point's stencil, a block's ends lost 10 % of the incline's friction).
+void chain_friction_capacity(const GridView &L, const GridView &G, const std::vector<Chain> &chains);
 
 // Elastic energy of a chain (J/m): sum_k T_k^2 l0_k / (2 J).
 double chain_elastic_energy(const Chain &c);

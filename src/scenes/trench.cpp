@@ -54,9 +54,10 @@ double Bisect(const std::function<double(double)> &f, double lo, double hi) {
 // Giroud's circular arc over a void of width b under pressure p with the anchorage added: the
 // material over the void is b + pull(T) long before it stretches by T / J, so
 //   arc(y) / b = (1 + pull(T) / b) (1 + T / J),  T = p b Omega(y).
-// theta = 2 atan(2 y / b) in (0, pi) parametrises y monotonically; the residual
-// arc/b - (1 + pull/b)(1 + T/J) runs from -inf (theta -> 0: Omega -> inf) to > 0 at the
-// semicircle for the loads of interest. Returns y (and T, eps = T / J) or y = -1 if no root.
+// theta = 2 atan(2 y / b) parametrises y monotonically (theta = pi / 2 is the semicircle); the
+// residual arc/b - (1 + pull/b)(1 + T/J) runs from -inf (theta -> 0: Omega -> inf) to > 0 at the
+// semicircle for the loads of interest (arc/b = pi/2 there, T = p b / 2). Returns y (and T,
+// eps = T / J) or y = -1 if there is no root up to the semicircle.
 struct ArcAnchored {
   double sag = -1, tension = 0, strain = 0, pull = 0;
 };
@@ -67,7 +68,7 @@ ArcAnchored GiroudAnchored(double p, double b, double J, const std::function<dou
     return (1.0 + giroud::strain(y, b)) - (1.0 + pull(T) / b) * (1.0 + T / J);
   };
   ArcAnchored a;
-  const double lo = 1e-6, hi = giroud::pi * (1 - 1e-9);
+  const double lo = 1e-6, hi = 0.5 * giroud::pi;
   if (!(res(lo) < 0 && res(hi) > 0)) return a;
   const double th = Bisect(res, lo, hi);
   a.sag = 0.5 * b * std::tan(0.5 * th);
@@ -82,18 +83,60 @@ std::string Obj(const std::vector<std::pair<std::string, double>> &kv) {
   for (size_t k = 0; k < kv.size(); ++k) s += (k ? ", " : "") + json_kv(kv[k].first, kv[k].second);
   return s + "}";
 }
+
+// The sheet's points and segments as plain arrays (chain.hpp: every rank holds them all).
+struct Sheet {
+  int n = 0;
+  std::vector<double> x0, x, y, length, p_top, p_bot, slip_top, slip_bot; // points
+  std::vector<double> eps, T, l0;                                        // segments
+};
+
+Sheet FullSheet(const Chain &c) {
+  Sheet s;
+  s.n = c.n;
+  for (int i = 0; i < c.n; ++i) {
+    s.x0.push_back(c.x0[i * DIM]);
+    s.x.push_back(c.x[i * DIM]);
+    s.y.push_back(c.x[i * DIM + 1]);
+  }
+  s.length = c.length;
+  s.p_top = c.p_top;
+  s.p_bot = c.p_bot;
+  s.slip_top = c.slip_top;
+  s.slip_bot = c.slip_bot;
+  s.eps = c.eps;
+  s.T = c.T;
+  s.l0 = c.l0;
+  return s;
+}
 } // namespace
 
 class TrenchScene final : public Scene {
   // geometry (m): trench width and depth, cover thickness, base height, anchorage, margin
-  double B_ = 2.0, D_ = 0.6, H_ = 1.0, Hb_ = 1.0, La_ = 2.0, margin_ = 0.5, t_ = 0.0015;
+  double B_ = 2.0, D_ = 0.8, H_ = 1.0, Hb_ = 1.0, La_ = 2.0, margin_ = 0.5, t_ = 0.0015;
   double W_ = 0, xe_[2] = {0, 0}, xc_ = 0;
-  double offset_ = 0.5; // -trench_surface_offset: the grid's bottom lies this many cells below y = 0
-  double phi_ = 30; // the cover's friction angle (deg) for Terzaghi's bracket
-  double pull_ = 0; // DEBUG -trench_debug_pull: no trench, end force on the right end
-  PetscInt every_ = 100;     // -trench_history_every: steps between history rows (0: none)
-  std::vector<double> hist_; // step, time, ratio, sag, edge tension, end pull-in, span pressure
-  static constexpr int kHist = 7;
+  double offset_ = 0.5;             // -trench_surface_offset (cells)
+  PetscBool pin_ = PETSC_FALSE;     // -trench_pin_ends: the sheet's far ends held
+  double phi_ = 30;                 // the cover's friction angle (deg) for Terzaghi's bracket
+  PetscInt every_ = 100;            // -trench_history_every (0: none)
+  // history rows: step, time, ratio, sag, edge tension, pull-in of the ends, pressure on the
+  // span, pressure on the metre of anchorage beside the edges (top face), pull-in at the edges,
+  // strain at mid-span
+  std::vector<double> hist_;
+  static constexpr int kHist = 10;
+
+  // where the current sheet crosses x = s: segment k and fraction r
+  static void Cross(const Sheet &q, double s, int &k, double &r) {
+    k = 0;
+    while (k + 2 < q.n && q.x[k + 1] < s) ++k;
+    r = (s - q.x[k]) / (q.x[k + 1] - q.x[k]);
+  }
+  static int Index0(const Sheet &q, double s) {
+    int best = 0;
+    for (int i = 0; i < q.n; ++i)
+      if (std::fabs(q.x0[i] - s) < std::fabs(q.x0[best] - s)) best = i;
+    return best;
+  }
 
 public:
   PetscErrorCode setup(Simulation &sim) override {
@@ -114,10 +157,13 @@ public:
                                "Grid lines this fraction of a cell below the bodies' faces: 0.5 "
                                "(the base surface and the sheet at mid-cell) or 0 (on a grid line)",
                                nullptr, offset_, &offset_, nullptr));
-    PetscCall(PetscOptionsReal("-debug_pull", "DEBUG", nullptr, pull_, &pull_, nullptr));
+    PetscCall(PetscOptionsBool("-pin_ends",
+                               "Hold the sheet's far ends fixed (an anchor trench) instead of "
+                               "leaving them free on the base",
+                               nullptr, pin_, &pin_, nullptr));
     PetscCall(PetscOptionsInt("-history_every",
                               "Steps between rows of trench_history.csv (sag, edge tension, "
-                              "pull-in of the ends, span pressure); 0: none",
+                              "pull-in, pressures); 0: none",
                               nullptr, every_, &every_, nullptr));
     PetscOptionsEnd();
     PetscOptionsBegin(sim.comm, "membrane_", "The membrane", nullptr);
@@ -138,18 +184,19 @@ public:
     PetscCheck((offset_ == 0 || offset_ == 0.5) && std::fmod(offset_ * sim.set.ppc, 1.0) == 0,
                sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-trench_surface_offset must be 0 or 0.5, and 0.5 needs an even -ppc (no particle "
-               "on a face; got %g with -ppc %" PetscInt_FMT ")",
+               "centre on a face; got %g with -ppc %" PetscInt_FMT ")",
                offset_, sim.set.ppc);
     PetscCheck(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-membrane_thickness must be > 0 (got %g)", t_);
+    // x: the trench centred at W / 2
     W_ = B_ + 2 * La_ + 2 * margin_;
     xc_ = 0.5 * W_;
     xe_[0] = margin_ + La_;
     xe_[1] = margin_ + La_ + B_;
-    // the base fills the grid from its bottom face, y = -offset h (a half cell more base)
+    // y: the base fills the grid from its bottom face, y = -offset h (half a cell more base)
     sim.origin[0] = 0;
     sim.origin[1] = -offset_ * h;
-    sim.ncell[0] = nB + 2 * nLa + 2 * nM;
+    sim.ncell[0] = nB + 2 * (nLa + nM);
     sim.ncell[1] = nHb + nH + 2 + (offset_ > 0 ? 1 : 0);
     sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
     sim.face[YMIN] = FaceBC::Fixed;
@@ -160,8 +207,7 @@ public:
     PetscCheck(sim.mats[COVER].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-mat_cover_gamma must be > 0 (the cover's weight is the load)");
     // Terzaghi's phi: the cover's own friction angle when it has one
-    PetscBool has = PETSC_FALSE;
-    PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-mat_cover_friction_angle", &phi_, &has));
+    PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-mat_cover_friction_angle", &phi_, nullptr));
     PetscOptionsBegin(sim.comm, "trench_", "Trench: closed forms", nullptr);
     PetscCall(PetscOptionsReal("-terzaghi_phi",
                                "Friction angle (deg) for Terzaghi's bracket (default: "
@@ -174,9 +220,9 @@ public:
     cs.name = "membrane";
     cs.material = "membrane";
     cs.thickness = t_;
-    // vertices at the edges, so chain points fall on them whatever the spacing
+    // vertices at the edges, so that chain points fall on them whatever the spacing
     cs.line = {margin_, Hb_, xe_[0], Hb_, xe_[1], Hb_, W_ - margin_, Hb_};
-    cs.end_force[0] = pull_;
+    cs.pin_start = cs.pin_end = pin_;
     sim.chain_specs.push_back(cs);
     PetscFunctionReturn(0);
   }
@@ -184,13 +230,12 @@ public:
   PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
     PetscFunctionBeginUser;
     const double Hb = Hb_, top = Hb_ + H_, floor = Hb_ - D_, x0 = xe_[0], x1 = xe_[1];
-    const bool debug = pull_ > 0;
     FillRegular(
         sim,
         [=](const double x[DIM]) {
           if (x[1] >= top) return -1;
           if (x[1] >= Hb) return int(COVER);
-          if (x[0] > x0 && x[0] < x1 && x[1] > floor && !debug) return -1; // the trench
+          if (x[0] > x0 && x[0] < x1 && x[1] > floor) return -1; // the trench
           return int(BASE);
         },
         out);
@@ -200,28 +245,30 @@ public:
   // The relaxation's history (every rank holds the chain): how the sag and the anchorage settle.
   PetscErrorCode monitor(Simulation &sim) override {
     if (every_ <= 0 || sim.run.step % every_ != 0 || sim.chains.empty()) return 0;
-    const Chain &c = sim.chains[0];
-    const int n = c.n;
-    int im = 0, ie0 = 0, ie1 = 0;
+    const Sheet q = FullSheet(sim.chains[0]);
+    const int n = q.n, im = Index0(q, xc_), ie0 = Index0(q, xe_[0]), ie1 = Index0(q, xe_[1]);
+    double pw = 0, lw = 0, pa = 0, la = 0;
     for (int i = 0; i < n; ++i) {
-      const double x0 = c.x0[i * DIM];
-      if (std::fabs(x0 - xc_) < std::fabs(c.x0[im * DIM] - xc_)) im = i;
-      if (std::fabs(x0 - xe_[0]) < std::fabs(c.x0[ie0 * DIM] - xe_[0])) ie0 = i;
-      if (std::fabs(x0 - xe_[1]) < std::fabs(c.x0[ie1 * DIM] - xe_[1])) ie1 = i;
-    }
-    double pw = 0, lw = 0;
-    for (int i = 0; i < n; ++i)
-      if (c.x[i * DIM] > xe_[0] && c.x[i * DIM] < xe_[1]) {
-        pw += c.p_top[i] * c.length[i];
-        lw += c.length[i];
+      if (q.x[i] > xe_[0] && q.x[i] < xe_[1]) {
+        pw += q.p_top[i] * q.length[i];
+        lw += q.length[i];
       }
+      const double d = std::fmin(std::fabs(q.x0[i] - xe_[0]), std::fabs(q.x0[i] - xe_[1]));
+      if ((q.x0[i] < xe_[0] || q.x0[i] > xe_[1]) && d > sim.set.h && d < 1.0) {
+        pa += q.p_top[i] * q.length[i];
+        la += q.length[i];
+      }
+    }
     const double row[kHist] = {double(sim.run.step),
                                sim.run.time,
                                sim.run.ratio,
-                               c.x0[im * DIM + 1] - c.x[im * DIM + 1],
-                               0.25 * (c.T[ie0 - 1] + c.T[ie0] + c.T[ie1 - 1] + c.T[ie1]),
-                               0.5 * ((c.x[0] - c.x0[0]) - (c.x[(n - 1) * DIM] - c.x0[(n - 1) * DIM])),
-                               lw > 0 ? pw / lw : 0.0};
+                               -(q.y[im] - Hb_),
+                               0.25 * (q.T[ie0 - 1] + q.T[ie0] + q.T[ie1 - 1] + q.T[ie1]),
+                               0.5 * ((q.x[0] - q.x0[0]) - (q.x[n - 1] - q.x0[n - 1])),
+                               lw > 0 ? pw / lw : 0.0,
+                               la > 0 ? pa / la : 0.0,
+                               0.5 * ((q.x[ie0] - q.x0[ie0]) - (q.x[ie1] - q.x0[ie1])),
+                               0.5 * (q.eps[im - 1] + q.eps[im])};
     hist_.insert(hist_.end(), row, row + kHist);
     return 0;
   }
@@ -233,10 +280,13 @@ public:
       const std::string path = sim.set.output_dir + "/trench_history.csv";
       FILE *f = std::fopen((path + ".tmp").c_str(), "w");
       PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
-      std::fprintf(f, "step,time,ratio,sag,tension_edge,pull_in_ends,pressure_span\n");
-      for (size_t k = 0; k + kHist <= hist_.size(); k += kHist)
-        std::fprintf(f, "%.0f,%.9g,%.6g,%.9g,%.9g,%.9g,%.9g\n", hist_[k], hist_[k + 1],
-                     hist_[k + 2], hist_[k + 3], hist_[k + 4], hist_[k + 5], hist_[k + 6]);
+      std::fprintf(f, "step,time,ratio,sag,tension_edge,pull_in_ends,pressure_span,"
+                      "pressure_anchorage,pull_in_edges,strain_mid\n");
+      for (size_t k = 0; k + kHist <= hist_.size(); k += kHist) {
+        std::fprintf(f, "%.0f", hist_[k]);
+        for (int j = 1; j < kHist; ++j) std::fprintf(f, ",%.9g", hist_[k + j]);
+        std::fprintf(f, "\n");
+      }
       std::fclose(f);
     }
     PetscCall(OutputCommit(sim, "trench_history.csv"));
@@ -246,108 +296,103 @@ public:
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     PetscFunctionBeginUser;
     const Chain &c = sim.chains[0];
-    const int n = c.n;
-    auto X0 = [&](int i) { return c.x0[i * DIM]; };
-    auto X = [&](int i) { return c.x[i * DIM]; };
-    auto Y = [&](int i) { return c.x[i * DIM + 1]; };
+    const Sheet q = FullSheet(c);
+    const int n = q.n;
     // a point field at initial abscissa s (linear interpolation between points)
     auto at0 = [&](double s, const std::function<double(int)> &f) {
       int k = 0;
-      while (k + 2 < n && X0(k + 1) < s) ++k;
-      const double r = (s - X0(k)) / (X0(k + 1) - X0(k));
+      while (k + 2 < n && q.x0[k + 1] < s) ++k;
+      const double r = (s - q.x0[k]) / (q.x0[k + 1] - q.x0[k]);
       return (1 - r) * f(k) + r * f(k + 1);
     };
-    // the point index at initial abscissa s (the edges are points)
-    auto index0 = [&](double s) {
-      int best = 0;
-      for (int i = 0; i < n; ++i)
-        if (std::fabs(X0(i) - s) < std::fabs(X0(best) - s)) best = i;
-      return best;
-    };
-    // where the current sheet crosses x = s: segment k and fraction r
-    auto cross = [&](double s, int &k, double &r) {
-      k = 0;
-      while (k + 2 < n && X(k + 1) < s) ++k;
-      r = (s - X(k)) / (X(k + 1) - X(k));
-    };
-    const double h = sim.set.h, B = B_, J = c.law.J;
+    const double B = B_, J = c.law.J;
     const double gamma = sim.mats[COVER].gamma, sigma_n = gamma * H_;
     const double mu_sum = c.top.mu + c.bottom.mu, m_cf = mu_sum * sigma_n;
-    auto uy = [&](int i) { return c.x[i * DIM + 1] - c.x0[i * DIM + 1]; };
-    auto ux = [&](int i) { return c.x[i * DIM] - c.x0[i * DIM]; };
+    auto uy = [&](int i) { return q.y[i] - Hb_; };
+    auto ux = [&](int i) { return q.x[i] - q.x0[i]; };
     // point values from the adjacent segments
     auto eps_pt = [&](int i) {
       const int a = std::max(i - 1, 0), b = std::min(i, n - 2);
-      return 0.5 * (c.eps[a] + c.eps[b]);
+      return 0.5 * (q.eps[a] + q.eps[b]);
     };
     auto T_pt = [&](int i) {
       const int a = std::max(i - 1, 0), b = std::min(i, n - 2);
-      return 0.5 * (c.T[a] + c.T[b]);
+      return 0.5 * (q.T[a] + q.T[b]);
     };
 
     // sag: absolute at mid-trench, and relative to the chord between the current sheet points
     // above the trench edges
     const double sag_abs = -at0(xc_, uy);
-    double ycross[3];
     const double xs[3] = {xe_[0], xc_, xe_[1]};
     int kx[3];
-    double rx[3], X0x[3];
+    double rx[3], ycross[3], X0x[3];
     for (int e = 0; e < 3; ++e) {
-      cross(xs[e], kx[e], rx[e]);
-      ycross[e] = (1 - rx[e]) * Y(kx[e]) + rx[e] * Y(kx[e] + 1);
-      X0x[e] = (1 - rx[e]) * X0(kx[e]) + rx[e] * X0(kx[e] + 1);
+      Cross(q, xs[e], kx[e], rx[e]);
+      ycross[e] = (1 - rx[e]) * q.y[kx[e]] + rx[e] * q.y[kx[e] + 1];
+      X0x[e] = (1 - rx[e]) * q.x0[kx[e]] + rx[e] * q.x0[kx[e] + 1];
     }
     const double sag_chord = 0.5 * (ycross[0] + ycross[2]) - ycross[1];
     // pull-in: the material now above each edge came from X0x; drawn-in length per side
     const double pull[2] = {xe_[0] - X0x[0], X0x[2] - xe_[1]};
     // the material points at the edges: their horizontal displacement toward the trench
-    const int ie[2] = {index0(xe_[0]), index0(xe_[1])};
+    const int ie[2] = {Index0(q, xe_[0]), Index0(q, xe_[1])};
     const double u_edge[2] = {ux(ie[0]), -ux(ie[1])};
     // arc length over the void and the material's mean strain there
     double arc = 0, mat0 = 0;
     for (int k = kx[0]; k <= kx[2]; ++k) {
       const double a = k == kx[0] ? rx[0] : 0.0, b = k == kx[2] ? rx[2] : 1.0;
       if (b <= a) continue;
-      const double l = std::hypot(X(k + 1) - X(k), Y(k + 1) - Y(k));
-      arc += (b - a) * l;
-      mat0 += (b - a) * c.l0[k];
+      arc += (b - a) * std::hypot(q.x[k + 1] - q.x[k], q.y[k + 1] - q.y[k]);
+      mat0 += (b - a) * q.l0[k];
     }
     const double eps_mean_span = arc / mat0 - 1, eps_geom = arc / B - 1;
     // peak strain over the span (segments whose initial midpoint is over the trench) and over
     // the whole sheet
     int kpk = -1, kall = 0;
     for (int k = 0; k + 1 < n; ++k) {
-      const double xm = 0.5 * (X0(k) + X0(k + 1));
-      if (xm > xe_[0] && xm < xe_[1] && (kpk < 0 || c.eps[k] > c.eps[kpk])) kpk = k;
-      if (c.eps[k] > c.eps[kall]) kall = k;
+      const double xm = 0.5 * (q.x0[k] + q.x0[k + 1]);
+      if (xm > xe_[0] && xm < xe_[1] && (kpk < 0 || q.eps[k] > q.eps[kpk])) kpk = k;
+      if (q.eps[k] > q.eps[kall]) kall = k;
     }
+    const double xpk = kpk >= 0 ? 0.5 * (q.x0[kpk] + q.x0[kpk + 1]) : 0.0;
     const double eps_mid = at0(xc_, eps_pt);
-    // pressure on the sheet over the void: the chain's p_top over the points now above the
-    // trench (length-weighted), the whole span and its inner part (one cell clear of each edge)
+    // pressure on the sheet over the void: the chain's p_top (length-weighted) over the points
+    // now above the trench, and over its central 80 % (clear of the corners, where the sheet
+    // bends over the edges and the cover presses it onto them)
+    const double a_in = 0.4 * B;
     double pw[2] = {0, 0}, pwi[2] = {0, 0}, pb[2] = {0, 0};
     for (int i = 0; i < n; ++i) {
-      if (X(i) <= xe_[0] || X(i) >= xe_[1]) continue;
-      pw[0] += c.p_top[i] * c.length[i];
-      pw[1] += c.length[i];
-      pb[0] += c.p_bot[i] * c.length[i];
-      pb[1] += c.length[i];
-      if (X(i) > xe_[0] + h && X(i) < xe_[1] - h) {
-        pwi[0] += c.p_top[i] * c.length[i];
-        pwi[1] += c.length[i];
+      if (q.x[i] <= xe_[0] || q.x[i] >= xe_[1]) continue;
+      pw[0] += q.p_top[i] * q.length[i];
+      pw[1] += q.length[i];
+      pb[0] += q.p_bot[i] * q.length[i];
+      pb[1] += q.length[i];
+      if (std::fabs(q.x[i] - xc_) < a_in) {
+        pwi[0] += q.p_top[i] * q.length[i];
+        pwi[1] += q.length[i];
       }
     }
-    const double p_top = pw[1] > 0 ? pw[0] / pw[1] : 0, p_bot = pb[1] > 0 ? pb[0] / pb[1] : 0;
-    const double p_inner = pwi[1] > 0 ? pwi[0] / pwi[1] : 0;
-    // from equilibrium: the tension's vertical components where the sheet crosses the edges
-    // carry the pressure and the sheet's weight over the void
-    double V = 0;
-    for (int e : {0, 2}) {
-      const int k = kx[e];
-      const double dx = X(k + 1) - X(k), dy = Y(k + 1) - Y(k);
-      V += c.T[k] * std::fabs(dy) / std::hypot(dx, dy);
+    const double p_all = pw[1] > 0 ? pw[0] / pw[1] : 0, p_bot = pb[1] > 0 ? pb[0] / pb[1] : 0;
+    const double p_top = pwi[1] > 0 ? pwi[0] / pwi[1] : 0;
+    // from the sheet's equilibrium over the same central 80 %: the vertical components of the
+    // tension where the sheet crosses x = xc -+ 0.4 B carry the pressure and the sheet's weight
+    double V = 0, L0in = 0;
+    {
+      int kin[2];
+      double rin[2];
+      for (int e = 0; e < 2; ++e) {
+        Cross(q, xc_ + (e == 0 ? -a_in : a_in), kin[e], rin[e]);
+        const int k = kin[e];
+        const double dx = q.x[k + 1] - q.x[k], dy = q.y[k + 1] - q.y[k];
+        V += q.T[k] * std::fabs(dy) / std::hypot(dx, dy);
+      }
+      for (int k = kin[0]; k <= kin[1]; ++k) {
+        const double a = k == kin[0] ? rin[0] : 0.0, b = k == kin[1] ? rin[1] : 1.0;
+        if (b > a) L0in += (b - a) * q.l0[k];
+      }
     }
-    const double p_eq = (V - c.line_weight * mat0) / B;
-    // anchorage on each side: from the edge outward
+    const double p_eq = (V - c.line_weight * L0in) / (2 * a_in);
+    // the anchorage on each side, from the edge outward
     struct Anch {
       double T_edge = 0, eps_edge = 0, len5 = 0, len_eq = 0, m = 0, p_top = 0, slip_bot = 0,
              slip_top = 0, u_end = 0;
@@ -361,42 +406,44 @@ public:
       bool found = false;
       for (int i = i0; i + step >= 0 && i + step < n; i += step) {
         const int k = e == 0 ? i - 1 : i; // the segment between i and i + step
-        area += std::fmax(c.T[k], 0.0) * c.l0[k];
-        if (!found && c.T[k] <= 0.05 * a.T_edge) {
-          a.len5 = std::fabs(0.5 * (X0(i) + X0(i + step)) - X0(i0));
+        area += std::fmax(q.T[k], 0.0) * q.l0[k];
+        if (!found && q.T[k] <= 0.05 * a.T_edge) {
+          a.len5 = std::fabs(0.5 * (q.x0[i] + q.x0[i + step]) - q.x0[i0]);
           found = true;
         }
       }
-      if (!found) a.len5 = std::fabs(X0(e == 0 ? 0 : n - 1) - X0(i0));
+      if (!found) a.len5 = std::fabs(q.x0[e == 0 ? 0 : n - 1] - q.x0[i0]);
       a.len_eq = a.T_edge > 0 ? 2 * area / a.T_edge : 0;
       a.m = a.len_eq > 0 ? a.T_edge / a.len_eq : 0;
       double ps = 0, ls = 0;
-      for (int i = 0; i < n; ++i)
-        if (std::fabs(X0(i) - X0(i0)) <= a.len_eq && (e == 0 ? X0(i) < X0(i0) : X0(i) > X0(i0))) {
-          ps += c.p_top[i] * c.length[i];
-          ls += c.length[i];
+      for (int i = 0; i < n; ++i) {
+        const double d = e == 0 ? q.x0[i0] - q.x0[i] : q.x0[i] - q.x0[i0];
+        if (d > 0 && d <= a.len_eq) {
+          ps += q.p_top[i] * q.length[i];
+          ls += q.length[i];
         }
+      }
       a.p_top = ls > 0 ? ps / ls : 0;
-      a.slip_bot = std::fabs(c.slip_bot[i0]);
-      a.slip_top = std::fabs(c.slip_top[i0]);
+      a.slip_bot = std::fabs(q.slip_bot[i0]);
+      a.slip_top = std::fabs(q.slip_top[i0]);
       a.u_end = e == 0 ? ux(0) : -ux(n - 1); // toward the trench
     }
     const double T_edge = 0.5 * (an[0].T_edge + an[1].T_edge);
+    const double m_sim = 0.5 * (an[0].m + an[1].m);
     // the sheet's lowest point against the trench floor
     double ymin = 1e300;
-    for (int i = 0; i < n; ++i) ymin = std::fmin(ymin, Y(i));
+    for (int i = 0; i < n; ++i) ymin = std::fmin(ymin, q.y[i]);
     const double gap_floor = ymin - (Hb_ - D_);
 
     // closed forms
-    const double tphi = std::tan(phi_ * giroud::pi / 180), sphi = std::sin(phi_ * giroud::pi / 180);
+    const double rad = giroud::pi / 180, tphi = std::tan(phi_ * rad), sphi = std::sin(phi_ * rad);
     const double Ka = (1 - sphi) / (1 + sphi);
-    auto terzaghi = [&](double ktan) {
-      const double x = 2 * ktan * H_ / B;
-      return 0.5 * gamma * B / ktan * (-std::expm1(-x));
+    auto terzaghi = [&](double ktan) { // FIELD.md 3.4, c = 0, q = 0
+      return 0.5 * gamma * B / ktan * (-std::expm1(-2 * ktan * H_ / B));
     };
     const double p_K1 = terzaghi(tphi), p_Ka = terzaghi(Ka * tphi), p_025 = terzaghi(0.25);
     auto giroud_sc = [&](double p) -> std::string {
-      try { // T = J eps: E t = J (q = p, no arching inside)
+      try { // T = J eps with E t = J; the pressure enters as giroud's surcharge (no arching)
         const auto g = giroud::self_consistent(0.0, B, 0.0, p, t_, J / t_);
         return Obj({{"pressure", p}, {"sag", g.sag}, {"strain", g.strain}, {"tension", g.tension}});
       } catch (const std::exception &) {
@@ -410,11 +457,7 @@ public:
                   {"pull_in_total", a.pull}});
     };
     const double pull_sim = pull[0] + pull[1];
-    const std::string g_sim_pull = anchored(p_top, [&](double) { return pull_sim; });
-    const std::string g_cf_pull =
-        anchored(p_top, [&](double T) { return 2 * T * T / (2 * m_cf * J); });
-    const std::string g_cf_pull_full =
-        anchored(sigma_n, [&](double T) { return 2 * T * T / (2 * m_cf * J); });
+    auto pull_cf = [&](double m) { return [m, J](double T) { return 2 * T * T / (2 * m * J); }; };
 
     auto side = [&](int e) {
       const Anch &a = an[e];
@@ -434,35 +477,37 @@ public:
     };
     const char *sep = ",\n    ";
     json = json_kv("trench_width", B) + sep + json_kv("trench_depth", D_) + sep +
-           json_kv("cover", H_) + sep + json_kv("axial_stiffness", J) + sep +
-           json_kv("overburden", sigma_n) + sep + json_kv("mu_sum", mu_sum) + sep +
+           json_kv("cover", H_) + sep +
+           json_kv("axial_stiffness", J) + sep + json_kv("overburden", sigma_n) + sep +
+           json_kv("mu_sum", mu_sum) + sep + json_kv("shear_closed_form", m_cf) + sep +
            json_kv("terzaghi_phi", phi_) + sep + json_kv("sag", sag_abs) + sep +
            json_kv("sag_chord", sag_chord) + sep + json_kv("strain_mid", eps_mid) + sep +
            json_kv("strain_mean_span", eps_mean_span) + sep +
            json_kv("strain_geometric_span", eps_geom) + sep +
-           json_kv("peak_strain_span", kpk >= 0 ? c.eps[kpk] : 0.0) + sep +
-           json_kv("peak_strain_span_x0", kpk >= 0 ? 0.5 * (X0(kpk) + X0(kpk + 1)) : 0.0) + sep +
-           json_kv("peak_strain_span_from_edge",
-                   kpk >= 0 ? std::fmin(0.5 * (X0(kpk) + X0(kpk + 1)) - xe_[0],
-                                        xe_[1] - 0.5 * (X0(kpk) + X0(kpk + 1)))
-                            : 0.0) +
-           sep + json_kv("peak_strain", c.eps[kall]) + sep +
-           json_kv("peak_strain_x0", 0.5 * (X0(kall) + X0(kall + 1))) + sep +
+           json_kv("peak_strain_span", kpk >= 0 ? q.eps[kpk] : 0.0) + sep +
+           json_kv("peak_strain_span_x0", xpk) + sep +
+           json_kv("peak_strain_span_from_edge", std::fmin(xpk - xe_[0], xe_[1] - xpk)) + sep +
+           json_kv("peak_strain", q.eps[kall]) + sep +
+           json_kv("peak_strain_x0", 0.5 * (q.x0[kall] + q.x0[kall + 1])) + sep +
            json_kv("strain_edge_left", an[0].eps_edge) + sep +
            json_kv("strain_edge_right", an[1].eps_edge) + sep + json_kv("tension_edge", T_edge) +
-           sep + json_kv("pull_in_total", pull_sim) + sep +
-           json_kv("pressure_span", p_top) + sep + json_kv("pressure_span_inner", p_inner) + sep +
+           sep + json_kv("tension_mid", at0(xc_, T_pt)) + sep +
+           json_kv("pull_in_total", pull_sim) + sep + json_kv("shear_mobilised", m_sim) + sep +
+           json_kv("pressure_span", p_top) + sep + json_kv("pressure_span_all", p_all) + sep +
            json_kv("pressure_equilibrium", p_eq) + sep + json_kv("pressure_bottom_span", p_bot) +
            sep + json_kv("gap_to_floor", gap_floor) + sep + "\"anchorage\": {\"left\": " +
            side(0) + ", \"right\": " + side(1) + "}" + sep + "\"terzaghi\": " +
            Obj({{"K1", p_K1}, {"Ka", p_Ka}, {"Ka_value", Ka}, {"ktan_025", p_025},
                 {"overburden", sigma_n}}) +
            sep + "\"giroud\": {\"overburden\": " + giroud_sc(sigma_n) +
-           ", \"simulated_pressure\": " + giroud_sc(p_top) +
-           ", \"giroud_arching\": " + giroud_sc(p_025) +
-           ", \"anchored_simulated_pull_in\": " + g_sim_pull +
-           ", \"anchored_closed_form\": " + g_cf_pull +
-           ", \"anchored_closed_form_overburden\": " + g_cf_pull_full + "}";
+           ",\n      \"simulated_pressure\": " + giroud_sc(p_top) +
+           ",\n      \"giroud_arching\": " + giroud_sc(p_025) +
+           ",\n      \"anchored_simulated_pull_in\": " +
+           anchored(p_top, [&](double) { return pull_sim; }) +
+           ",\n      \"anchored_closed_form\": " + anchored(p_top, pull_cf(m_cf)) +
+           ",\n      \"anchored_mobilised_shear\": " + anchored(p_top, pull_cf(m_sim)) +
+           ",\n      \"anchored_closed_form_overburden\": " + anchored(sigma_n, pull_cf(m_cf)) +
+           "}";
     PetscFunctionReturn(0);
   }
 };
