@@ -381,9 +381,10 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscBool chain_scaling = sim.set.inertia == InertiaScaling::WaveSpeed ? PETSC_TRUE : PETSC_FALSE;
   PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
   PetscCall(PetscOptionsBool("-chain_inertia_scaling",
-                             "Scale each chain's mass so its axial wave is no faster than the "
-                             "fastest continuum material's (never lighter than its own; the "
-                             "load is unchanged); default: on under -inertia_scaling wave_speed",
+                             "Set each chain's mass so its axial wave speed is the fastest "
+                             "continuum material's, as -inertia_scaling wave_speed does for "
+                             "materials (the load is unchanged); default: on under "
+                             "-inertia_scaling wave_speed",
                              nullptr, chain_scaling, &chain_scaling, nullptr));
   PetscOptionsEnd();
   PetscCheck(sim.chain_spacing >= 0.05 && sim.chain_spacing <= 1, sim.comm,
@@ -406,7 +407,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
     c.bottom.mu = sim.iface.mu_bottom;
     PetscCall(ChainCreate(sim.comm, sim.chain_specs[k], sim.chain_spacing * sim.set.h, c));
     // inertia: the sheet's axial wave no faster than the continuum's (its load is unchanged)
-    if (chain_scaling && cmax > 0) c.line_mass = std::fmax(c.line_mass, c.law.J / (cmax * cmax));
+    if (chain_scaling && cmax > 0) c.line_mass = c.law.J / (cmax * cmax);
     chain_update_tension(c);
   }
   sim.contact.tail_share = sim.iface.tail_share;

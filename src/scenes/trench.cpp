@@ -1,34 +1,46 @@
 // A geomembrane over an open trench under a cohesionless cover: Giroud's regime (FIELD.md 3.2,
 // 3.4, 3.5; REFERENCE.md 1.3).
 //
-// Geometry (x to the right, y up, origin at the bottom-left corner):
-//   base   0 <= y < Hb, full width W, elastic ("base": waste or stiff soil), base fixed, sides on
-//          rollers; an open trench (no particles) of width B and depth D centred at x = W / 2
+// Geometry (x to the right, y up; the grid starts -trench_surface_offset cells below y = 0):
+//   base   y < Hb, full width W, elastic ("base": stiff soil), base fixed, sides on rollers; an
+//          open trench (no particles) of width B and depth D centred at x = W / 2
 //   sheet  a membrane chain ("membrane") laid flat on the base surface y = Hb from x = margin to
 //          W - margin: it spans the trench and lies on the base over an anchorage of length La on
-//          each side; its ends are free (held by friction only)
-//   cover  Hb <= y < Hb + H, full width ("cover": Drucker-Prager, c = 0, or elastic)
-// Every length is a whole number of cells. Gravity on every body; the cover over the trench is
-// carried by the sheet and by arching onto the trench's sides.
+//          each side; its ends are free (friction holds them) or pinned (-trench_pin_ends)
+//   cover  Hb <= y < Hb + H, full width ("cover": Drucker-Prager with c = 0, or elastic)
+// Lengths are whole numbers of cells. With -trench_surface_offset 0.5 (default) the base surface
+// and the sheet lie at mid-cell: the sheet's two node rows both carry base, sheet and cover. On a
+// grid line (offset 0) the sheet's thin block still reaches the rows above and below with tails
+// of weight ~1e-3 where only one soil is, and the anchorage creeps (the pull-out of a sheet
+// between the layers did not converge: ratio 3e-2 after 12,000 steps, against 2,343 steps to
+// 1e-4 at mid-cell).
 //
-// Results beside the closed forms:
+// Results beside the closed forms (summary.json "results"; trench_history.csv every
+// -trench_history_every steps):
 //   - the sheet's sag at mid-trench (absolute, and relative to the chord between the current
-//     sheet points at the trench edges), its strain (peak in the span and where, mean over the
-//     material now over the void, at the edges), the pressure the cover puts on it over the
-//     trench (p_top of the chain averaged over the span; and from the sheet's equilibrium: the
-//     vertical components of the tension where the sheet crosses the edges, over B);
-//   - the anchorage on each side: the edge tension T_e, the pull-in u (horizontal displacement of
-//     the sheet material toward the trench at the edge, and the material length drawn over the
-//     void), the stretched length (T falls to 5 % of T_e; and the length of the triangle with
-//     the same area, 2 int T+ dx / T_e), the mobilised shear m = T_e / that length, beside
-//     FIELD.md 3.2: x_a = T_e / m, m = (mu_t + mu_b) gamma H, u0 = T_e^2 / (2 m J);
-//   - Terzaghi arching (FIELD.md 3.4) with K = 1, K = Ka and K tan phi = 0.25 (Giroud's);
-//   - Giroud's self-consistent sag and strain (giroud.hpp, J the chain's axial stiffness) with
-//     (a) the full overburden gamma H, (b) the simulated pressure, (c) Giroud's arching pressure;
-//     and Giroud's circular arc with the anchorage added: the material over the void is B plus
-//     the pull-in on both sides, arc length = (B + u_L + u_R)(1 + T / J), T = p B Omega(y):
-//     (d) with the simulated pull-in and pressure, (e) with the closed-form pull-in
-//     u = T^2 / (2 m J) on each side (rigid soil, full friction; FIELD.md 3.2).
+//     sheet points above the trench edges), its strain (at mid-span; the mean of the material
+//     now over the void; the peak over the span and where; at the edge points), its tension at
+//     mid-span and at the edges;
+//   - the pressure of the cover on the sheet over the trench: p = T_mid / R, the pressure that
+//     holds a circular sheet of the simulated chord sag under the simulated mid-span tension
+//     (Giroud's own T = p R); the chain's p_top over the span and over its central 80 %; and the
+//     sheet's vertical equilibrium (the tension's vertical components where it crosses the edges,
+//     or x = xc -+ 0.4 B, over that width). The pressure is not uniform (lower at mid-span), and
+//     p_top counts only nodes in contact, so the arc pressure is the one compared;
+//   - the anchorage on each side: the edge tension T_e, the pull-in (the material length drawn
+//     over the void, and the horizontal displacement of the edge's material point), the
+//     stretched length (T falls to 5 % of T_e; and the triangle of the same area,
+//     2 int T+ dx / T_e), the mobilised shear T_e / that length, beside FIELD.md 3.2:
+//     x_a = T_e / m, m = (mu_t + mu_b) gamma H, u0 = T_e^2 / (2 m J);
+//   - Terzaghi arching (FIELD.md 3.4, c = 0) with K = 1, K = Ka of the cover's phi, and
+//     K tan phi = 0.25 (Giroud's choice);
+//   - Giroud's self-consistent sag and strain (giroud.hpp, with E t = J, the chain's axial
+//     stiffness) for (a) the full overburden gamma H, (b) the arc pressure, the chain's p_top
+//     over the central span, (c) Giroud's arching pressure; and Giroud's arc with the anchorage:
+//     the material over the void is B plus the pull-in of both sides before it stretches, so
+//     arc(y) = (B + u_L + u_R)(1 + T / J), T = p B Omega(y), with (d) the simulated pull-in,
+//     (e) the closed-form pull-in u = T^2 / (2 m J) per side (rigid soil, full friction on both
+//     faces), (f) the same with the simulated mobilised shear, (g) (e) under the overburden.
 #include "pmpm/giroud.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
@@ -61,7 +73,8 @@ double Bisect(const std::function<double(double)> &f, double lo, double hi) {
 struct ArcAnchored {
   double sag = -1, tension = 0, strain = 0, pull = 0;
 };
-ArcAnchored GiroudAnchored(double p, double b, double J, const std::function<double(double)> &pull) {
+ArcAnchored GiroudAnchored(double p, double b, double J,
+                           const std::function<double(double)> &pull) {
   auto res = [&](double th) {
     const double y = 0.5 * b * std::tan(0.5 * th);
     const double T = p * b * giroud::omega(y, b);
@@ -88,7 +101,7 @@ std::string Obj(const std::vector<std::pair<std::string, double>> &kv) {
 struct Sheet {
   int n = 0;
   std::vector<double> x0, x, y, length, p_top, p_bot, slip_top, slip_bot; // points
-  std::vector<double> eps, T, l0;                                        // segments
+  std::vector<double> eps, T, l0;                                         // segments
 };
 
 Sheet FullSheet(const Chain &c) {
@@ -115,10 +128,10 @@ class TrenchScene final : public Scene {
   // geometry (m): trench width and depth, cover thickness, base height, anchorage, margin
   double B_ = 2.0, D_ = 0.8, H_ = 1.0, Hb_ = 1.0, La_ = 2.0, margin_ = 0.5, t_ = 0.0015;
   double W_ = 0, xe_[2] = {0, 0}, xc_ = 0;
-  double offset_ = 0.5;             // -trench_surface_offset (cells)
-  PetscBool pin_ = PETSC_FALSE;     // -trench_pin_ends: the sheet's far ends held
-  double phi_ = 30;                 // the cover's friction angle (deg) for Terzaghi's bracket
-  PetscInt every_ = 100;            // -trench_history_every (0: none)
+  double offset_ = 0.5;         // -trench_surface_offset (cells)
+  PetscBool pin_ = PETSC_FALSE; // -trench_pin_ends: the sheet's far ends held
+  double phi_ = 30;             // the cover's friction angle (deg) for Terzaghi's bracket
+  PetscInt every_ = 100;        // -trench_history_every (0: none)
   // history rows: step, time, ratio, sag, edge tension, pull-in of the ends, pressure on the
   // span, pressure on the metre of anchorage beside the edges (top face), pull-in at the edges,
   // strain at mid-span
@@ -144,8 +157,8 @@ public:
     PetscOptionsBegin(sim.comm, "trench_", "Trench: a membrane over an open trench under a cover",
                       nullptr);
     PetscCall(PetscOptionsReal("-width", "Trench width B (m)", nullptr, B_, &B_, nullptr));
-    PetscCall(PetscOptionsReal("-depth", "Trench depth D (m), < base height", nullptr, D_, &D_,
-                               nullptr));
+    PetscCall(
+        PetscOptionsReal("-depth", "Trench depth D (m), < base height", nullptr, D_, &D_, nullptr));
     PetscCall(PetscOptionsReal("-cover", "Cover thickness H (m)", nullptr, H_, &H_, nullptr));
     PetscCall(PetscOptionsReal("-base_height", "Base layer height Hb (m), > trench depth", nullptr,
                                Hb_, &Hb_, nullptr));
@@ -355,7 +368,11 @@ public:
       if (q.eps[k] > q.eps[kall]) kall = k;
     }
     const double xpk = kpk >= 0 ? 0.5 * (q.x0[kpk] + q.x0[kpk + 1]) : 0.0;
-    const double eps_mid = at0(xc_, eps_pt);
+    const double eps_mid = at0(xc_, eps_pt), T_mid = at0(xc_, T_pt);
+    // the pressure of Giroud's arc: a uniform normal pressure p holds a circular sheet of radius
+    // R under the tension T = p R; R from the chord B and the simulated chord sag
+    const double R_arc = (0.25 * B * B + sag_chord * sag_chord) / (2 * sag_chord);
+    const double p_arc = T_mid / R_arc;
     // pressure on the sheet over the void: the chain's p_top (length-weighted) over the points
     // now above the trench, and over its central 80 % (clear of the corners, where the sheet
     // bends over the edges and the cover presses it onto them)
@@ -392,6 +409,15 @@ public:
       }
     }
     const double p_eq = (V - c.line_weight * L0in) / (2 * a_in);
+    // ... and over the whole span (the crossings of the edges; includes what the sheet hands to
+    // the corners where it bends over them)
+    double Ve = 0;
+    for (int e : {0, 2}) {
+      const int k = kx[e];
+      const double dx = q.x[k + 1] - q.x[k], dy = q.y[k + 1] - q.y[k];
+      Ve += q.T[k] * std::fabs(dy) / std::hypot(dx, dy);
+    }
+    const double p_eq_edges = (Ve - c.line_weight * mat0) / B;
     // the anchorage on each side, from the edge outward
     struct Anch {
       double T_edge = 0, eps_edge = 0, len5 = 0, len_eq = 0, m = 0, p_top = 0, slip_bot = 0,
@@ -453,7 +479,10 @@ public:
     auto anchored = [&](double p, const std::function<double(double)> &pf) -> std::string {
       const ArcAnchored a = GiroudAnchored(p, B, J, pf);
       if (a.sag < 0) return "null";
-      return Obj({{"pressure", p}, {"sag", a.sag}, {"strain", a.strain}, {"tension", a.tension},
+      return Obj({{"pressure", p},
+                  {"sag", a.sag},
+                  {"strain", a.strain},
+                  {"tension", a.tension},
                   {"pull_in_total", a.pull}});
     };
     const double pull_sim = pull[0] + pull[1];
@@ -477,12 +506,11 @@ public:
     };
     const char *sep = ",\n    ";
     json = json_kv("trench_width", B) + sep + json_kv("trench_depth", D_) + sep +
-           json_kv("cover", H_) + sep +
-           json_kv("axial_stiffness", J) + sep + json_kv("overburden", sigma_n) + sep +
-           json_kv("mu_sum", mu_sum) + sep + json_kv("shear_closed_form", m_cf) + sep +
-           json_kv("terzaghi_phi", phi_) + sep + json_kv("sag", sag_abs) + sep +
-           json_kv("sag_chord", sag_chord) + sep + json_kv("strain_mid", eps_mid) + sep +
-           json_kv("strain_mean_span", eps_mean_span) + sep +
+           json_kv("cover", H_) + sep + json_kv("axial_stiffness", J) + sep +
+           json_kv("overburden", sigma_n) + sep + json_kv("mu_sum", mu_sum) + sep +
+           json_kv("shear_closed_form", m_cf) + sep + json_kv("terzaghi_phi", phi_) + sep +
+           json_kv("sag", sag_abs) + sep + json_kv("sag_chord", sag_chord) + sep +
+           json_kv("strain_mid", eps_mid) + sep + json_kv("strain_mean_span", eps_mean_span) + sep +
            json_kv("strain_geometric_span", eps_geom) + sep +
            json_kv("peak_strain_span", kpk >= 0 ? q.eps[kpk] : 0.0) + sep +
            json_kv("peak_strain_span_x0", xpk) + sep +
@@ -491,21 +519,27 @@ public:
            json_kv("peak_strain_x0", 0.5 * (q.x0[kall] + q.x0[kall + 1])) + sep +
            json_kv("strain_edge_left", an[0].eps_edge) + sep +
            json_kv("strain_edge_right", an[1].eps_edge) + sep + json_kv("tension_edge", T_edge) +
-           sep + json_kv("tension_mid", at0(xc_, T_pt)) + sep +
-           json_kv("pull_in_total", pull_sim) + sep + json_kv("shear_mobilised", m_sim) + sep +
-           json_kv("pressure_span", p_top) + sep + json_kv("pressure_span_all", p_all) + sep +
-           json_kv("pressure_equilibrium", p_eq) + sep + json_kv("pressure_bottom_span", p_bot) +
-           sep + json_kv("gap_to_floor", gap_floor) + sep + "\"anchorage\": {\"left\": " +
-           side(0) + ", \"right\": " + side(1) + "}" + sep + "\"terzaghi\": " +
-           Obj({{"K1", p_K1}, {"Ka", p_Ka}, {"Ka_value", Ka}, {"ktan_025", p_025},
+           sep + json_kv("tension_mid", T_mid) + sep + json_kv("pull_in_total", pull_sim) + sep +
+           json_kv("shear_mobilised", m_sim) + sep + json_kv("pressure_arc", p_arc) + sep +
+           json_kv("arc_radius", R_arc) + sep + json_kv("pressure_top_inner", p_top) + sep +
+           json_kv("pressure_top_span", p_all) + sep + json_kv("pressure_equilibrium_inner", p_eq) +
+           sep + json_kv("pressure_equilibrium_edges", p_eq_edges) + sep +
+           json_kv("pressure_bottom_span", p_bot) + sep + json_kv("gap_to_floor", gap_floor) + sep +
+           "\"anchorage\": {\"left\": " + side(0) + ", \"right\": " + side(1) + "}" + sep +
+           "\"terzaghi\": " +
+           Obj({{"K1", p_K1},
+                {"Ka", p_Ka},
+                {"Ka_value", Ka},
+                {"ktan_025", p_025},
                 {"overburden", sigma_n}}) +
            sep + "\"giroud\": {\"overburden\": " + giroud_sc(sigma_n) +
-           ",\n      \"simulated_pressure\": " + giroud_sc(p_top) +
+           ",\n      \"simulated_pressure\": " + giroud_sc(p_arc) +
+           ",\n      \"pressure_top_inner\": " + giroud_sc(p_top) +
            ",\n      \"giroud_arching\": " + giroud_sc(p_025) +
            ",\n      \"anchored_simulated_pull_in\": " +
-           anchored(p_top, [&](double) { return pull_sim; }) +
-           ",\n      \"anchored_closed_form\": " + anchored(p_top, pull_cf(m_cf)) +
-           ",\n      \"anchored_mobilised_shear\": " + anchored(p_top, pull_cf(m_sim)) +
+           anchored(p_arc, [&](double) { return pull_sim; }) +
+           ",\n      \"anchored_closed_form\": " + anchored(p_arc, pull_cf(m_cf)) +
+           ",\n      \"anchored_mobilised_shear\": " + anchored(p_arc, pull_cf(m_sim)) +
            ",\n      \"anchored_closed_form_overburden\": " + anchored(sigma_n, pull_cf(m_cf)) +
            "}";
     PetscFunctionReturn(0);
