@@ -15,6 +15,10 @@ if (($#)); then
   opts=$1
   shift
   run -options_file "$opts" "$@"
+  # a scene with membrane chains: plot each chain's strain, tension, slip, pressure and shape
+  out=$(/usr/bin/python3 -c 'import sys; a = sys.argv[1:]; print(a[a.index("-output_dir") + 1] if "-output_dir" in a else "")' "$@")
+  [ -n "$out" ] || out=output/$(sed -n 's/^-scene *//p' "$opts" | head -1)
+  if compgen -G "$out/chain_*.csv" > /dev/null; then /usr/bin/python3 scripts/plot_chain.py "$out"; fi
   exit
 fi
 run -options_file options/landfill.opts -output_dir output/landfill

@@ -5,6 +5,9 @@
 //   sag = w L0^2 / (8 J) + (H / w) (sqrt(1 + (V / H)^2) - 1),  V = w L0 / 2,
 //   T(s) = sqrt(H^2 + (w s - V)^2), strain T / J (largest at the supports).
 // -catenary_offset dx,dy moves the whole chain by a fraction of a cell against the grid.
+// -catenary_second adds a second, independent chain ("liner", material -mat_liner_*) hanging
+// -catenary_second_drop below the first: several named chains per scene, each with its own
+// material, checked against its own closed form.
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
 #include <cmath>
@@ -35,8 +38,9 @@ CatenaryExact SolveCatenary(double l, double L0, double w, double J) {
 
 class CatenaryScene final : public Scene {
   double span_ = 10, t_ = 0.0015, off_[DIM] = {0, 0};
-  CatenaryExact ex_{};
-  double y0_ = 0;
+  CatenaryExact ex_{}, ex2_{};
+  double y0_ = 0, y2_ = 0, drop_ = 0;
+  PetscBool second_ = PETSC_FALSE;
 
 public:
   PetscErrorCode setup(Simulation &sim) override {
@@ -49,6 +53,12 @@ public:
                                     "Shift of the chain against the grid, dx,dy (m; a fraction "
                                     "of a cell tests grid independence)",
                                     nullptr, off_, &n, nullptr));
+    PetscCall(PetscOptionsBool("-second",
+                               "A second chain (\"liner\", material -mat_liner_*, thickness "
+                               "-membrane_thickness) below the first",
+                               nullptr, second_, &second_, nullptr));
+    PetscCall(PetscOptionsReal("-second_drop", "How far the second chain hangs below the first (m)",
+                               nullptr, drop_, &drop_, nullptr));
     PetscOptionsEnd();
     PetscOptionsBegin(sim.comm, "membrane_", "The membrane", nullptr);
     PetscCall(
@@ -72,8 +82,19 @@ public:
       PetscCall(ChainCreate(sim.comm, ps, span_, probe));
     }
     ex_ = SolveCatenary(span_, span_, probe.line_weight, probe.law.J);
+    double depth = ex_.sag;
+    if (second_) {
+      Chain probe2;
+      ChainSpec ps = cs;
+      ps.name = ps.material = "liner";
+      ps.line = {0, 0, span_, 0};
+      PetscCall(ChainCreate(sim.comm, ps, span_, probe2));
+      ex2_ = SolveCatenary(span_, span_, probe2.line_weight, probe2.law.J);
+      if (drop_ <= 0) drop_ = 1.2 * ex_.sag + 2 * h; // below the first chain's sag
+      depth = std::fmax(depth, drop_ + ex2_.sag);
+    }
     sim.ncell[0] = static_cast<PetscInt>(std::ceil(span_ / h - 1e-9)) + 4;
-    sim.ncell[1] = static_cast<PetscInt>(std::ceil(1.2 * ex_.sag / h)) + 5;
+    sim.ncell[1] = static_cast<PetscInt>(std::ceil(1.2 * depth / h)) + 5;
     sim.origin[0] = -2 * h;
     sim.origin[1] = -(sim.ncell[1] - 3) * h;
     y0_ = 0.5 * h + off_[1];
@@ -81,6 +102,13 @@ public:
     PetscCheck(std::fabs(off_[0]) < h && std::fabs(off_[1]) < h, sim.comm,
                PETSC_ERR_ARG_OUTOFRANGE, "-catenary_offset must be within one cell (|d| < %g m)",
                h);
+    if (second_) { // chains go bottom to top
+      ChainSpec c2 = cs;
+      c2.name = c2.material = "liner";
+      y2_ = y0_ - drop_;
+      c2.line = {off_[0], y2_, off_[0] + span_, y2_};
+      sim.chain_specs.push_back(c2);
+    }
     sim.chain_specs.push_back(cs);
     for (int f = 0; f < 2 * DIM; ++f) sim.face[f] = FaceBC::Free;
     PetscFunctionReturn(0);
@@ -90,7 +118,7 @@ public:
 
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     PetscFunctionBeginUser;
-    const Chain &c = sim.chains[0];
+    const Chain &c = sim.chains.back(); // the membrane (the liner, if any, is below it)
     // mid-span: the point at s = L0 / 2 (the point count is odd for an even division) or the
     // mean of the two around it; strains: the segments there and at the supports
     const int im = (c.n - 1) / 2, jm = c.n / 2;
@@ -113,6 +141,13 @@ public:
            sep + json_kv("horizontal_reaction", -c.reaction[0][0]) + sep +
            json_kv("vertical_reaction", c.reaction[0][1]) + sep +
            json_kv("vertical_reaction_exact", ex_.V);
+    if (second_) {
+      const Chain &l = sim.chains[0];
+      const double yl = 0.5 * (l.x[((l.n - 1) / 2) * DIM + 1] + l.x[(l.n / 2) * DIM + 1]);
+      json += std::string(sep) + json_kv("liner_sag", y2_ - yl) + sep +
+              json_kv("liner_sag_exact", ex2_.sag) + sep +
+              json_kv("liner_axial_stiffness", l.law.J);
+    }
     PetscFunctionReturn(0);
   }
 };

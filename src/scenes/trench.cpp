@@ -134,9 +134,9 @@ class TrenchScene final : public Scene {
   PetscInt every_ = 100;        // -trench_history_every (0: none)
   // history rows: step, time, ratio, sag, edge tension, pull-in of the ends, pressure on the
   // span, pressure on the metre of anchorage beside the edges (top face), pull-in at the edges,
-  // strain at mid-span
+  // strain at mid-span, peak strain over the span
   std::vector<double> hist_;
-  static constexpr int kHist = 10;
+  static constexpr int kHist = 11;
 
   // where the current sheet crosses x = s: segment k and fraction r
   static void Cross(const Sheet &q, double s, int &k, double &r) {
@@ -272,6 +272,8 @@ public:
         la += q.length[i];
       }
     }
+    double peak = 0;
+    for (int k = ie0; k < ie1; ++k) peak = std::fmax(peak, q.eps[k]);
     const double row[kHist] = {double(sim.run.step),
                                sim.run.time,
                                sim.run.ratio,
@@ -281,7 +283,8 @@ public:
                                lw > 0 ? pw / lw : 0.0,
                                la > 0 ? pa / la : 0.0,
                                0.5 * ((q.x[ie0] - q.x0[ie0]) - (q.x[ie1] - q.x0[ie1])),
-                               0.5 * (q.eps[im - 1] + q.eps[im])};
+                               0.5 * (q.eps[im - 1] + q.eps[im]),
+                               peak};
     hist_.insert(hist_.end(), row, row + kHist);
     return 0;
   }
@@ -294,7 +297,7 @@ public:
       FILE *f = std::fopen((path + ".tmp").c_str(), "w");
       PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
       std::fprintf(f, "step,time,ratio,sag,tension_edge,pull_in_ends,pressure_span,"
-                      "pressure_anchorage,pull_in_edges,strain_mid\n");
+                      "pressure_anchorage,pull_in_edges,strain_mid,peak_strain_span\n");
       for (size_t k = 0; k + kHist <= hist_.size(); k += kHist) {
         std::fprintf(f, "%.0f", hist_[k]);
         for (int j = 1; j < kHist; ++j) std::fprintf(f, ",%.9g", hist_[k + j]);
