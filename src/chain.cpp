@@ -37,7 +37,9 @@ void point_halfsize(const GridView &G, const double *x, const double tau[DIM], d
   }
 }
 
-bool pinned(const Chain &c, int i) { return (i == 0 && c.pin[0]) || (i == c.n - 1 && c.pin[1]); }
+bool pinned(const Chain &c, int i) {
+  return (i == 0 && c.pin[0]) || (i == c.n - 1 && c.pin[1]);
+}
 
 bool owned_by(const Grid &grid, const GridView &G, const double *x) {
   PetscInt cell[DIM];
@@ -75,8 +77,9 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   double sigma_y = 0, H = 0;
   c.nu = 0.0;
   PetscOptionsBegin(comm, prefix.c_str(), ("Membrane material " + spec.material).c_str(), nullptr);
-  PetscCall(PetscOptionsEnum("-law", "Membrane law: linear, tension_only (slack in compression), "
-                                     "elastoplastic (1D von Mises, linear hardening)",
+  PetscCall(PetscOptionsEnum("-law",
+                             "Membrane law: linear, tension_only (slack in compression), "
+                             "elastoplastic (1D von Mises, linear hardening)",
                              nullptr, MembraneLawNames, (PetscEnum)c.law.kind,
                              (PetscEnum *)&c.law.kind, nullptr));
   PetscCall(PetscOptionsReal("-E", "Young's modulus (Pa), > 0", nullptr, c.E, &c.E, &hasE));
@@ -86,10 +89,9 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
                              nullptr, c.gamma, &c.gamma, nullptr));
   PetscCall(PetscOptionsReal("-density", "Inertial density (kg/m^3), > 0 (default gamma / 9.81)",
                              nullptr, c.density, &c.density, nullptr));
-  PetscCall(PetscOptionsEnum("-axial_stiffness",
-                             "J = E t / (1 - nu^2) (plane_strain) or E t (uniaxial)", nullptr,
-                             StiffnessKindNames, (PetscEnum)c.stiffness,
-                             (PetscEnum *)&c.stiffness, nullptr));
+  PetscCall(PetscOptionsEnum(
+      "-axial_stiffness", "J = E t / (1 - nu^2) (plane_strain) or E t (uniaxial)", nullptr,
+      StiffnessKindNames, (PetscEnum)c.stiffness, (PetscEnum *)&c.stiffness, nullptr));
   PetscCall(PetscOptionsReal("-yield_stress", "Uniaxial yield stress (Pa), > 0 (elastoplastic)",
                              nullptr, sigma_y, &sigma_y, nullptr));
   PetscCall(PetscOptionsReal("-hardening", "Linear hardening modulus (Pa), >= 0 (elastoplastic)",
@@ -112,8 +114,7 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
     PetscCheck(sigma_y > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-%syield_stress must be > 0 with -%slaw elastoplastic (got %g)", prefix.c_str(),
                prefix.c_str(), sigma_y);
-    PetscCheck(H >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%shardening must be >= 0",
-               prefix.c_str());
+    PetscCheck(H >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%shardening must be >= 0", prefix.c_str());
     c.law.yield_T = sigma_y * c.thickness;
     c.law.hardening = H * c.thickness;
   }
@@ -132,14 +133,15 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   c.top.type = c.bottom.type = ft;
   PetscCall(PetscOptionsReal("-mu_top", "Friction coefficient on the upper face, >= 0", nullptr,
                              c.top.mu, &c.top.mu, nullptr));
-  PetscCall(PetscOptionsReal("-mu_bottom", "Friction coefficient on the lower face, >= 0",
-                             nullptr, c.bottom.mu, &c.bottom.mu, nullptr));
+  PetscCall(PetscOptionsReal("-mu_bottom", "Friction coefficient on the lower face, >= 0", nullptr,
+                             c.bottom.mu, &c.bottom.mu, nullptr));
   PetscCall(PetscOptionsReal("-delta_top",
                              "Interface friction angle of the upper face (degrees, 0..60; "
                              "replaces mu_top by tan delta)",
                              nullptr, delta[0], &delta[0], nullptr));
-  PetscCall(PetscOptionsReal("-delta_bottom", "Interface friction angle of the lower face (degrees)",
-                             nullptr, delta[1], &delta[1], nullptr));
+  PetscCall(PetscOptionsReal("-delta_bottom",
+                             "Interface friction angle of the lower face (degrees)", nullptr,
+                             delta[1], &delta[1], nullptr));
   PetscCall(PetscOptionsReal("-adhesion_top", "Adhesion of the upper face (Pa), >= 0", nullptr,
                              c.top.adhesion, &c.top.adhesion, nullptr));
   PetscCall(PetscOptionsReal("-adhesion_bottom", "Adhesion of the lower face (Pa), >= 0", nullptr,
@@ -150,12 +152,11 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   for (int k = 0; k < 2; ++k) {
     if (delta[k] >= 0) {
       PetscCheck(delta[k] <= 60, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "-%sdelta_%s must be in [0, 60] degrees (got %g)", cp.c_str(), fname[k],
-                 delta[k]);
+                 "-%sdelta_%s must be in [0, 60] degrees (got %g)", cp.c_str(), fname[k], delta[k]);
       faces[k]->mu = std::tan(delta[k] * M_PI / 180);
     }
-    PetscCheck(faces[k]->mu >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-%smu_%s must be >= 0 (got %g)", cp.c_str(), fname[k], faces[k]->mu);
+    PetscCheck(faces[k]->mu >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%smu_%s must be >= 0 (got %g)",
+               cp.c_str(), fname[k], faces[k]->mu);
     PetscCheck(faces[k]->adhesion >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-%sadhesion_%s must be >= 0 (got %g)", cp.c_str(), fname[k], faces[k]->adhesion);
   }
@@ -177,7 +178,8 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   c.l0.assign(c.n - 1, 0.0);
   c.length.assign(c.n, 0.0);
   for (int k = 0; k + 1 < c.n; ++k) {
-    c.l0[k] = std::hypot(c.x[(k + 1) * DIM] - c.x[k * DIM], c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1]);
+    c.l0[k] =
+        std::hypot(c.x[(k + 1) * DIM] - c.x[k * DIM], c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1]);
     c.length[k] += 0.5 * c.l0[k];
     c.length[k + 1] += 0.5 * c.l0[k];
   }
@@ -196,7 +198,8 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
 
 void chain_update_tension(Chain &c) {
   for (int k = 0; k + 1 < c.n; ++k) {
-    const double dx = c.x[(k + 1) * DIM] - c.x[k * DIM], dy = c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1];
+    const double dx = c.x[(k + 1) * DIM] - c.x[k * DIM],
+                 dy = c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1];
     c.eps[k] = std::hypot(dx, dy) / c.l0[k] - 1.0;
     bool slack = false;
     c.T[k] = c.law.tension(c.eps[k], c.eps_p[k], c.alpha[k], slack);
@@ -204,7 +207,8 @@ void chain_update_tension(Chain &c) {
   }
   std::fill(c.f.begin(), c.f.end(), 0.0);
   for (int k = 0; k + 1 < c.n; ++k) {
-    const double dx = c.x[(k + 1) * DIM] - c.x[k * DIM], dy = c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1];
+    const double dx = c.x[(k + 1) * DIM] - c.x[k * DIM],
+                 dy = c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1];
     const double l = std::hypot(dx, dy), fx = c.T[k] * dx / l, fy = c.T[k] * dy / l;
     c.f[k * DIM] += fx; // the segment pulls its ends toward each other under tension
     c.f[k * DIM + 1] += fy;
@@ -355,7 +359,8 @@ int chain_owner_count(const std::vector<double> &buf, int n) {
   return k;
 }
 
-void chain_friction_capacity(const GridView &L, const GridView &G, const std::vector<Chain> &chains) {
+void chain_friction_capacity(const GridView &L, const GridView &G,
+                             const std::vector<Chain> &chains) {
   Weights<UGIMPShape> W;
   constexpr int NS = UGIMPShape::NS;
   double lp[DIM], tau[DIM], nrm[DIM];

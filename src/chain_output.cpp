@@ -51,9 +51,10 @@ PetscErrorCode OutputChains(Simulation &sim) {
         bool slack;
         point_segment_values(c, i, eps, T, slack);
         const double *x = &c.x[i * DIM], *x0 = &c.x0[i * DIM];
-        std::fprintf(f, "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%d,%.15g,%.15g,%.15g,%.15g\n",
-                     s0, x0[0], x0[1], x[0], x[1], x[0] - x0[0], x[1] - x0[1], eps, T,
-                     slack ? 1 : 0, c.slip_top[i], c.slip_bot[i], c.p_top[i], c.p_bot[i]);
+        std::fprintf(
+            f, "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%d,%.15g,%.15g,%.15g,%.15g\n",
+            s0, x0[0], x0[1], x[0], x[1], x[0] - x0[0], x[1] - x0[1], eps, T, slack ? 1 : 0,
+            c.slip_top[i], c.slip_bot[i], c.p_top[i], c.p_bot[i]);
       }
       std::fclose(f);
       PetscCheck(std::rename((path + ".tmp").c_str(), path.c_str()) == 0, PETSC_COMM_SELF,
@@ -134,23 +135,22 @@ std::string ChainSummaryJson(const Simulation &sim) {
       sbot = std::fmax(sbot, std::fabs(c.slip_bot[i]));
     }
     auto mid = [&](int j, int d) { return 0.5 * (c.x[j * DIM + d] + c.x[(j + 1) * DIM + d]); };
-    s += "    \"" + c.name + "\": {\n      \"law\": \"" + MembraneLawNames[(int)c.law.kind] +
-         "\"" + sep + "\"axial_stiffness_kind\": \"" + StiffnessKindNames[(int)c.stiffness] +
-         "\"" + sep + json_kv("axial_stiffness", c.law.J) + sep +
-         json_kv("thickness", c.thickness) + sep + json_kv("points", double(c.n)) + sep +
-         json_kv("line_mass", c.line_mass) + sep + json_kv("line_weight", c.line_weight) + sep +
-         "\"interface\": \"" + FaceTypeNames[(int)c.top.type] + "\"" + sep +
-         json_kv("mu_top", c.top.mu) + sep + json_kv("mu_bottom", c.bottom.mu) + sep +
-         json_kv("adhesion_top", c.top.adhesion) + sep +
-         json_kv("adhesion_bottom", c.bottom.adhesion) + sep +
-         json_kv("peak_strain", c.eps[ipk]) + sep + json_kv("peak_strain_x", mid(ipk, 0)) + sep +
-         json_kv("peak_strain_y", mid(ipk, 1)) + sep + json_kv("min_strain", smin) + sep +
-         json_kv("peak_tension", c.T[itk]) + sep + json_kv("peak_tension_x", mid(itk, 0)) + sep +
-         json_kv("slack_length", slack_len) + sep + json_kv("max_slip_top", stop) + sep +
-         json_kv("max_slip_bottom", sbot) + sep + json_kv("friction_force", c.friction_force) +
-         sep + "\"reaction_start\": [" + json_num(c.reaction[0][0]) + ", " +
-         json_num(c.reaction[0][1]) + "]" + sep + "\"reaction_end\": [" +
-         json_num(c.reaction[1][0]) + ", " + json_num(c.reaction[1][1]) + "]\n    }";
+    s += "    \"" + c.name + "\": {\n      \"law\": \"" + MembraneLawNames[(int)c.law.kind] + "\"" +
+         sep + "\"axial_stiffness_kind\": \"" + StiffnessKindNames[(int)c.stiffness] + "\"" + sep +
+         json_kv("axial_stiffness", c.law.J) + sep + json_kv("thickness", c.thickness) + sep +
+         json_kv("points", double(c.n)) + sep + json_kv("line_mass", c.line_mass) + sep +
+         json_kv("line_weight", c.line_weight) + sep + "\"interface\": \"" +
+         FaceTypeNames[(int)c.top.type] + "\"" + sep + json_kv("mu_top", c.top.mu) + sep +
+         json_kv("mu_bottom", c.bottom.mu) + sep + json_kv("adhesion_top", c.top.adhesion) + sep +
+         json_kv("adhesion_bottom", c.bottom.adhesion) + sep + json_kv("peak_strain", c.eps[ipk]) +
+         sep + json_kv("peak_strain_x", mid(ipk, 0)) + sep + json_kv("peak_strain_y", mid(ipk, 1)) +
+         sep + json_kv("min_strain", smin) + sep + json_kv("peak_tension", c.T[itk]) + sep +
+         json_kv("peak_tension_x", mid(itk, 0)) + sep + json_kv("slack_length", slack_len) + sep +
+         json_kv("max_slip_top", stop) + sep + json_kv("max_slip_bottom", sbot) + sep +
+         json_kv("friction_force", c.friction_force) + sep + "\"reaction_start\": [" +
+         json_num(c.reaction[0][0]) + ", " + json_num(c.reaction[0][1]) + "]" + sep +
+         "\"reaction_end\": [" + json_num(c.reaction[1][0]) + ", " + json_num(c.reaction[1][1]) +
+         "]\n    }";
     s += k + 1 < sim.chains.size() ? ",\n" : "\n";
   }
   const ContactStats &cs = sim.contact_stats;

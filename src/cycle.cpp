@@ -164,8 +164,8 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
       buf.insert(buf.end(), part.begin(), part.end());
     }
     PetscCall(GridRestoreLocal(g, G));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()),
-                               MPI_DOUBLE, MPI_SUM, sim.comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE,
+                               MPI_SUM, sim.comm));
     size_t off = 0;
     for (Chain &c : sim.chains) {
       const size_t w = static_cast<size_t>(c.n) * (2 * DIM + 5);

@@ -15,8 +15,8 @@ PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[DIM],
   // GHOSTED boundaries give every rank two ghost layers outside the box too, so a particle at the
   // box face can write its (zero-weight) outer stencil nodes without a bounds test.
   PetscCall(DMDACreate2d(comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX,
-                         ncell[0] + 1, ncell[1] + 1, PETSC_DECIDE, PETSC_DECIDE, g.nd, 2,
-                         nullptr, nullptr, &g.da));
+                         ncell[0] + 1, ncell[1] + 1, PETSC_DECIDE, PETSC_DECIDE, g.nd, 2, nullptr,
+                         nullptr, &g.da));
   PetscCall(DMSetFromOptions(g.da));
   PetscCall(DMSetUp(g.da));
   PetscCall(DMDASetUniformCoordinates(g.da, origin[0], origin[0] + ncell[0] * h, origin[1],

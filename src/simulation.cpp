@@ -18,8 +18,9 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscInt ng = DIM;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
-  PetscCall(PetscOptionsString("-scene", "Scene: bar, column, landfill, incline, layers, block, catenary, pullout, trench",
-                               nullptr, scene, scene, sizeof(scene), &set));
+  PetscCall(PetscOptionsString(
+      "-scene", "Scene: bar, column, landfill, incline, layers, block, catenary, pullout, trench",
+      nullptr, scene, scene, sizeof(scene), &set));
   PetscCheck(set, comm, PETSC_ERR_USER_INPUT,
              "No scene given: pass -options_file options/<scene>.opts or -scene NAME "
              "(bar, column, landfill, incline, layers, block)");
@@ -413,8 +414,8 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   sim.contact.tail_share = sim.iface.tail_share;
   for (int f = 0; f < 2 * DIM; ++f) sim.contact.face[f] = sim.face[f];
 
-  PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody,
-                       nchain * ChainDof::NDOF, sim.grid));
+  PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody, nchain * ChainDof::NDOF,
+                       sim.grid));
   if (sim.iface.type != InterfaceType::Bonded && nchain == 0)
     PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
   PetscCall(ParticlesCreate(sim.grid, sim.parts));

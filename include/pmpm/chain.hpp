@@ -49,8 +49,8 @@ inline constexpr const char *StiffnessKindNames[] = {"plane_strain", "uniaxial",
                                                      "STIFFNESS_", nullptr};
 
 // -chain_<name>_interface: contact_stack's FaceType, in its order.
-inline constexpr const char *FaceTypeNames[] = {"bonded", "paper", "contact", "FaceType", "FACE_",
-                                                nullptr};
+inline constexpr const char *FaceTypeNames[] = {"bonded",   "paper", "contact",
+                                                "FaceType", "FACE_", nullptr};
 
 // Friction on one face of a chain: Coulomb mu (or tan delta) plus an adhesion (Pa).
 struct ChainFace {
@@ -146,7 +146,8 @@ void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const C
 // instead of mu (N_j + N_j+1) (pull-out: anchored length 14 % long at h = 0.02 m, 51 % at 0.01 m).
 // Returning the pressure to the contact nodes only keeps it under the bodies' footprint (spread
 // over all of a point's stencil, a block's ends lost 10 % of the incline's friction).
-void chain_friction_capacity(const GridView &L, const GridView &G, const std::vector<Chain> &chains);
+void chain_friction_capacity(const GridView &L, const GridView &G,
+                             const std::vector<Chain> &chains);
 
 // Elastic energy of a chain (J/m): sum_k T_k^2 l0_k / (2 J).
 double chain_elastic_energy(const Chain &c);

@@ -64,8 +64,8 @@ public:
     PetscCall(
         PetscOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
     PetscOptionsEnd();
-    PetscCheck(span_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-catenary_span must be > 0 (got %g)", span_);
+    PetscCheck(span_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-catenary_span must be > 0 (got %g)",
+               span_);
     PetscCheck(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-membrane_thickness must be > 0 (got %g)", t_);
     const double h = sim.set.h;
@@ -99,9 +99,8 @@ public:
     sim.origin[1] = -(sim.ncell[1] - 3) * h;
     y0_ = 0.5 * h + off_[1];
     cs.line = {off_[0], y0_, off_[0] + span_, y0_};
-    PetscCheck(std::fabs(off_[0]) < h && std::fabs(off_[1]) < h, sim.comm,
-               PETSC_ERR_ARG_OUTOFRANGE, "-catenary_offset must be within one cell (|d| < %g m)",
-               h);
+    PetscCheck(std::fabs(off_[0]) < h && std::fabs(off_[1]) < h, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-catenary_offset must be within one cell (|d| < %g m)", h);
     if (second_) { // chains go bottom to top
       ChainSpec c2 = cs;
       c2.name = c2.material = "liner";
@@ -131,12 +130,11 @@ public:
     const double eps_sup = 0.5 * (end(0, 1) + end(c.n - 2, c.n - 3));
     const char *sep = ",\n    ";
     json = json_kv("span", span_) + sep + json_kv("thickness", t_) + sep +
-           json_kv("weight_per_length", c.line_weight) + sep +
-           json_kv("axial_stiffness", c.law.J) + sep + json_kv("points", double(c.n)) + sep +
-           json_kv("sag", y0_ - ymid) + sep + json_kv("sag_exact", ex_.sag) + sep +
-           json_kv("strain_mid", eps_mid) + sep + json_kv("strain_mid_exact", ex_.strain_mid) +
-           sep + json_kv("strain_support", eps_sup) + sep +
-           json_kv("strain_support_exact", ex_.strain_support) + sep +
+           json_kv("weight_per_length", c.line_weight) + sep + json_kv("axial_stiffness", c.law.J) +
+           sep + json_kv("points", double(c.n)) + sep + json_kv("sag", y0_ - ymid) + sep +
+           json_kv("sag_exact", ex_.sag) + sep + json_kv("strain_mid", eps_mid) + sep +
+           json_kv("strain_mid_exact", ex_.strain_mid) + sep + json_kv("strain_support", eps_sup) +
+           sep + json_kv("strain_support_exact", ex_.strain_support) + sep +
            json_kv("tension_mid", T_mid) + sep + json_kv("tension_mid_exact", ex_.tension_mid) +
            sep + json_kv("horizontal_reaction", -c.reaction[0][0]) + sep +
            json_kv("vertical_reaction", c.reaction[0][1]) + sep +

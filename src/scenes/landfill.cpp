@@ -351,12 +351,12 @@ public:
            json_kv("min_axial_stress", prof_[smin].stress_axial) + sep +
            json_kv("membrane_layers", double(layers_)) + sep +
            "\"membrane_chain\": " + (chain_ ? "true" : "false") + sep +
-           json_kv("max_slip_top", slip_top_) +
-           sep + json_kv("max_slip_bottom", slip_bottom_) + sep + "\"interface\": \"" +
+           json_kv("max_slip_top", slip_top_) + sep + json_kv("max_slip_bottom", slip_bottom_) +
+           sep + "\"interface\": \"" +
            (chain_ ? FaceTypeNames[(int)sim.chains[0].top.type]
                    : InterfaceTypeNames[(int)sim.iface.type]) +
-           "\"" + sep +
-           "\"giroud\": {\"paper\": " + paper + ", \"self_consistent\": " + selfc + "}";
+           "\"" + sep + "\"giroud\": {\"paper\": " + paper + ", \"self_consistent\": " + selfc +
+           "}";
     PetscFunctionReturn(0);
   }
 
