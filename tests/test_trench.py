@@ -42,7 +42,13 @@ Bounds and why:
   below, is printed, not asserted), well below the overburden of 19 kPa.
 - Convergence: the change of the peak strain in the span between successive meshes shrinks
   (-0.77 then -0.18 points) and the two finest agree within 5 % (measured 3.2 %); the chord sag
-  and the mid-span strain agree within 2 % (1.0 % and 0.1 %).
+  and the mid-span strain agree within 2 % (1.0 % and 0.1 %). A caveat from the bench-scale runs
+  (twice the steps; h = 0.03125 m, 64 cells across, 64,000 steps, 16 min): the span moves on a
+  little (mid-span strain 4.54 -> 4.74 %, tension 27.3 -> 28.4 kN/m, chord sag 0.291 -> 0.295 m,
+  arc pressure 14.6 -> 15.4 kPa) and the peak, now at the edge itself, falls to 4.8 % (5.8 % at
+  h = 0.0625 m after 32,000 steps): the peak sits where the sheet bends over the trench's 90-degree
+  edge, and with the sheet on a grid line instead of at mid-cell it is 7.6 % at h = 0.0625 m (the
+  span within 2 %). The span's values are the converged answer; the corner peak is not.
 - Ranks: the coarse run on 1 rank and on NP ranks agree to 1e-3 (measured 1.9e-5). Not to
   round-off: the ghost sums differ in order (stress 2e-16 apart after step 1), and the stick-slip
   of the anchorage and the yielding cover amplify that (1e-13 in the positions at step 100, 2e-6
@@ -70,9 +76,10 @@ for h, ramp, steps in LEVELS:
     r["_ratio"], r["_steps"], r["_h"], r["_dir"] = s["unbalanced_force_ratio"], s["steps"], h, d
     res.append(r)
     g, ga = r["giroud"]["simulated_pressure"], r["giroud"]["anchored_simulated_pull_in"]
-    print(f"     h = {h}: chord sag {r['sag_chord']:.4f} m, strain mid {100 * r['strain_mid']:.3f} %"
-          f", mean over void {100 * r['strain_mean_span']:.3f} %, peak {100 * r['peak_strain_span']:.3f}"
-          f" % at {r['peak_strain_span_from_edge']:.3f} m from the edge, T mid "
+    print(f"     h = {h}: chord sag {r['sag_chord']:.4f} m, strain mid "
+          f"{100 * r['strain_mid']:.3f} %, mean over void {100 * r['strain_mean_span']:.3f} %, "
+          f"peak {100 * r['peak_strain_span']:.3f} % at {r['peak_strain_span_from_edge']:.3f} m "
+          f"from the edge, T mid "
           f"{r['tension_mid'] / 1e3:.2f} kN/m, arc pressure {r['pressure_arc'] / 1e3:.2f} kPa, "
           f"pull-in {1e3 * r['pull_in_total']:.1f} mm; Giroud {g['sag']:.4f} m / "
           f"{100 * g['strain']:.3f} %, + pull-in {ga['sag']:.4f} m / {100 * ga['strain']:.3f} %; "
@@ -81,14 +88,14 @@ for h, ramp, steps in LEVELS:
 # the state the checks read
 for r in res:
     h = r["_h"]
-    c.le(f"h = {h}: the sheet's free ends stay put (pull-out < 1 mm)",
-         max(r["anchorage"]["left"]["end_displacement"], r["anchorage"]["right"]["end_displacement"]),
-         1e-3)
+    ends = [r["anchorage"][side]["end_displacement"] for side in ("left", "right")]
+    c.le(f"h = {h}: the sheet's free ends stay put (pull-out < 1 mm)", max(ends), 1e-3)
     c.ge(f"h = {h}: the sheet shares no node with the trench floor (gap > 1.5 cells)",
          r["gap_to_floor"], 1.5 * h)
     c.le(f"h = {h}: unbalanced-force ratio at the step budget", r["_ratio"], 0.3)
 fine = res[-1]
-hist = np.genfromtxt(os.path.join(fine["_dir"], "trench_history.csv"), delimiter=",", names=True)
+hist = np.genfromtxt(os.path.join(fine["_dir"], "trench_history.csv"), delimiter=",",
+                     names=True)
 q = len(hist) * 3 // 4
 for key in ("sag", "strain_mid"):
     drift = abs(hist[key][-1] / hist[key][q] - 1)
@@ -99,7 +106,8 @@ for r in res[1:]:
     h = r["_h"]
     g, ga = r["giroud"]["simulated_pressure"], r["giroud"]["anchored_simulated_pull_in"]
     c.check(f"h = {h}: Giroud (strain only over the void) overestimates the mid-span strain",
-            g["strain"] > r["strain_mid"], f"({100 * g['strain']:.3f} % > {100 * r['strain_mid']:.3f} %)")
+            g["strain"] > r["strain_mid"],
+            f"({100 * g['strain']:.3f} % > {100 * r['strain_mid']:.3f} %)")
     c.check(f"h = {h}: ... and underestimates the sag (the anchorage feeds sheet into the span)",
             g["sag"] < r["sag_chord"], f"({g['sag']:.4f} < {r['sag_chord']:.4f} m)")
     c.le(f"h = {h}: Giroud + simulated pull-in: strain over the void (relative)",
