@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(petsc-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev libeigen3-dev
-          cmake make g++ pkg-config python3-numpy python3-matplotlib python3-h5py)
+          cmake make g++ pkg-config python3-numpy python3-matplotlib python3-h5py python3-scipy)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
