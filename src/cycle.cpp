@@ -2,6 +2,7 @@
 // transfers.cpp or a material's batch update; PETSc appears only for the ghost exchanges and the
 // migration.
 #include "pmpm/cycle.hpp"
+#include "pmpm/degradation.hpp"
 #include <cmath>
 
 namespace pmpm {
@@ -190,8 +191,10 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     PetscCall(PetscLogEventEnd(ev_chain, 0, 0, 0, 0));
   }
 
-  // 6. Stress update, one batch per material (eq. 6).
+  // 6. Stress update, one batch per material (eq. 6), less any imposed eigenstrain.
   PetscCall(PetscLogEventBegin(ev_stress, 0, 0, 0, 0));
+  const bool eigen = load.shrink != 0;
+  if (eigen) rep.eigen_power = shrinkage_increment(P, sim.shrink, load.shrink, sim.eigen);
   for (size_t m = 0; m < sim.mats.size(); ++m) {
     StressBatch b;
     b.n = static_cast<int>(sim.mat_idx[m].size());
@@ -201,6 +204,7 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     b.F = P.F;
     b.stress = P.stress;
     b.eps_p = P.eps_p;
+    if (eigen) b.eigen = sim.eigen.data();
     sim.mats[m].model->update_stress(b);
   }
   PetscCall(PetscLogEventEnd(ev_stress, 0, 0, 0, 0));

@@ -1,7 +1,7 @@
 static const char help[] =
     "pmpm: large-deformation quasi-static geomechanics with the partition Material Point Method.\n"
     "Usage: mpirun -n N pmpm -options_file options/<scene>.opts [-option value ...]\n"
-    "Scenes: bar, column, landfill, incline, layers, block, catenary, pullout, trench.\n"
+    "Scenes: bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover.\n"
     "-help lists every option.\n\n";
 
 #include "pmpm/cycle.hpp"
@@ -31,7 +31,7 @@ static PetscErrorCode Run() {
   }
 
   PetscCall(PetscLogStagePush(st_relax));
-  PetscCall(Relax(sim));
+  PetscCall(RunStages(sim));
   PetscCall(PetscLogStagePop());
 
   // Output only after a run that ended cleanly (an instability returns an error above).

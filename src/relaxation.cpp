@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace pmpm {
 
@@ -22,10 +23,10 @@ PetscErrorCode ZeroParticleVelocities(Simulation &sim) {
 }
 
 // Energy balance, the instability test that does not wait for a particle to invert. Damping,
-// plasticity, friction and kinetic resets only remove energy, so at every step
-//   E_kin + U_el <= E_kin(0) + W_ext,   W_ext = sum over steps of dt sum_p f_p . v_p,
-// with f_p the particle's load (ramped weight and traction) and U_el the elastic energy of the
-// current stresses (small-strain compliance of each material). A step above the stable limit
+// plasticity, friction and kinetic resets only remove energy, so at every step of a stage
+//   E_kin + U_el <= E_kin(0) + U_el(0) + W_ext,   W_ext = sum over steps of dt sum_p f_p . v_p,
+// with f_p the particle's load (ramped weight and traction) plus the work of any imposed
+// eigenstrain (degradation.hpp), and U_el the elastic energy of the current stresses (small-strain compliance of each material). A step above the stable limit
 // creates energy: the unstable mode grows by a constant factor per step (1.5-2x measured on the
 // column at -cfl 0.65-0.75) and passes the budget a few steps after it becomes visible, whereas
 // with local damping the step size then shrinks with the speeds and the run can "converge" to a
@@ -42,7 +43,7 @@ constexpr double kEnergyFactor = 2.0;
 // quasi-static landfill shows 1.9e-4 (mu 0.3) and 1.3e-3 (mu 0).
 constexpr double kTensionWarn = 0.01;
 struct EnergyBudget {
-  double e0 = 0;      // kinetic energy before the first step (scenes may start with a velocity)
+  double e0 = 0;      // kinetic + elastic energy before the first step of the stage
   double w_local = 0; // this rank's part of W_ext
   double floor = 0;   // 1e-14 sum_p M_p V_p
 };
@@ -83,10 +84,12 @@ PetscErrorCode EnergyBudgetInit(Simulation &sim, EnergyBudget &eb) {
     s[0] += 0.5 * P.mass[p] * (v[0] * v[0] + v[1] * v[1]);
     s[1] += sim.wave_modulus[P.mat[p]] * P.vol[p];
   }
+  const double u = ElasticEnergy(sim, P); // a later stage starts from a loaded state
   PetscCall(ParticlesRestoreView(sim.parts, P));
   if (sim.rank == 0)
     for (const Chain &c : sim.chains)
       for (int k = 0; k + 1 < c.n; ++k) s[1] += c.law.J * c.l0[k];
+  s[0] += u;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 2, MPI_DOUBLE, MPI_SUM, sim.comm));
   eb = EnergyBudget{};
   eb.e0 = s[0];
@@ -146,19 +149,31 @@ PetscErrorCode Relax(Simulation &sim) {
   const double t_start = MPI_Wtime();
   double t_last = t_start, log_ratio_last = 0;
   PetscInt step_last = 0;
+  // Stage 0 ramps the loads; a later stage ramps its change (the shrinkage) at full load.
+  const bool first = sim.stage == 0;
+  const PetscInt ramp = first ? s.ramp_steps : sim.stage_ramp;
+  char stage_tag[48] = "";
+  if (sim.nstages > 0)
+    snprintf(stage_tag, sizeof(stage_tag), "stage %d/%d  ", (int)sim.stage, (int)sim.nstages);
+  run.kinetic_prev = 0;
+  run.converged = false;
   double ke_window = -1; // kinetic energy 100 steps ago, for the growth test
   EnergyBudget budget;
   PetscCall(EnergyBudgetInit(sim, budget));
   char why_buf[384];
-  if (!s.quiet)
+  if (!s.quiet && first)
     PetscCall(PetscPrintf(sim.comm,
                           "pmpm %s: %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g m, "
                           "shape %s, dt = %.3e s (cfl %g), tolerance %g\n",
                           s.scene.c_str(), sim.ncell[0], sim.ncell[1], s.h,
                           ShapeKindNames[(int)s.shape], run.dt, s.cfl, s.tol));
 
-  for (run.step = 1; run.step <= s.max_steps; ++run.step) {
-    load.factor = s.ramp_steps > 0 ? std::fmin(1.0, double(run.step) / s.ramp_steps) : 1.0;
+  PetscInt k = 1;
+  for (; k <= s.max_steps; ++k) {
+    run.stage_step = k;
+    ++run.step;
+    load.factor = first && ramp > 0 ? std::fmin(1.0, double(k) / ramp) : 1.0;
+    load.shrink = !first && k <= ramp ? sim.stage_shrink / double(ramp) : 0.0;
     PetscCall(Step(sim, load, run.dt, rep));
     { // the work of this step's loads (before a scene changes them in monitor)
       double pw = rep.g2p.weight_power;
@@ -168,7 +183,7 @@ PetscErrorCode Relax(Simulation &sim) {
         pw += TractionPower(P, sim.traction_idx);
         PetscCall(ParticlesRestoreView(sim.parts, P));
       }
-      budget.w_local += run.dt * load.factor * pw;
+      budget.w_local += run.dt * load.factor * pw + rep.eigen_power;
     }
     run.time += run.dt;
     PetscCall(sim.scene->monitor(sim));
@@ -179,19 +194,19 @@ PetscErrorCode Relax(Simulation &sim) {
 
     // Instability: a non-finite ratio or step, particle speeds beyond the wave speed (an
     // explicit step above the stable limit grows exponentially), or sustained energy growth.
-    const bool ramped = run.step >= s.ramp_steps;
+    const bool ramped = k >= ramp;
     const double vmax = rep.g2p.max_v;
     const char *why = nullptr;
     if (!std::isfinite(run.ratio) || !std::isfinite(rep.g2p.max_speed))
       why = "non-finite nodal force or wave speed";
     else if (vmax > c0)
       why = "particle speed exceeds the material wave speed";
-    if (ramped && run.step % 100 == 0) {
+    if (ramped && k % 100 == 0) {
       if (ke_window > 0 && run.kinetic > 1e8 * ke_window && !s.dynamic)
         why = "kinetic energy grew 1e8-fold in 100 steps after the load ramp";
       ke_window = run.kinetic;
     }
-    if (!why && run.step % kEnergyEvery == 0) {
+    if (!why && k % kEnergyEvery == 0) {
       ParticleView P;
       PetscCall(ParticlesGetView(sim.parts, P));
       double e[2] = {ElasticEnergy(sim, P), budget.w_local};
@@ -235,44 +250,51 @@ PetscErrorCode Relax(Simulation &sim) {
     const double now = MPI_Wtime();
     if (!s.quiet && (now - t_last >= s.progress_seconds || run.converged)) {
       const double lr = std::log10(std::fmax(run.ratio, 1e-300));
-      const double per_step = (now - t_last) / double(run.step - step_last);
-      double left = double(s.max_steps - run.step);
-      if (step_last > 0 && ramped && lr < log_ratio_last) {
-        const double rate = (log_ratio_last - lr) / double(run.step - step_last);
-        left = std::fmin(left, (lr - std::log10(s.tol)) / rate);
-      } else if (!ramped) {
-        left = std::fmin(left, double(s.ramp_steps - run.step) * 2.0);
+      const double per_step = (now - t_last) / double(k - step_last);
+      // Steps left: the ramp, then the ratio's recent decay rate down to -tol (log scale);
+      // unknown (?) until the ratio has fallen between two lines.
+      double left = -1;
+      if (!ramped)
+        left = double(ramp - k) * 2.0;
+      else if (step_last > 0 && lr < log_ratio_last)
+        left = (lr - std::log10(s.tol)) / ((log_ratio_last - lr) / double(k - step_last));
+      if (left >= 0) left = std::fmin(left, double(s.max_steps - k));
+      char eta[48];
+      if (run.converged)
+        snprintf(eta, sizeof(eta), "converged");
+      else {
+        FormatSeconds(left >= 0 ? left * per_step : -1, eta + 4, sizeof(eta) - 4);
+        std::memcpy(eta, "ETA ", 4);
       }
-      char eta[32];
-      FormatSeconds(left * per_step, eta, sizeof(eta));
       PetscCall(PetscPrintf(sim.comm,
-                            "  step %8" PetscInt_FMT "  t %.4e s  ratio %.3e  load %.2f  "
-                            "KE %.3e  ETA %s\n",
-                            run.step, run.time, run.ratio, load.factor, run.kinetic, eta));
+                            "  %sstep %8" PetscInt_FMT "  t %.4e s  ratio %.3e  load %.2f  "
+                            "KE %.3e  %s\n",
+                            stage_tag, k, run.time, run.ratio, load.factor, run.kinetic, eta));
       t_last = now;
-      step_last = run.step;
+      step_last = k;
       log_ratio_last = lr;
     }
     if (run.converged) break;
     run.max_speed = rep.g2p.max_speed;
     run.dt = s.cfl * s.h / run.max_speed; // stable step from the current wave speeds
   }
-  if (run.step > s.max_steps) run.step = s.max_steps;
-  run.wall_seconds = MPI_Wtime() - t_start;
+  if (k > s.max_steps) run.stage_step = s.max_steps;
+  run.stage_seconds = MPI_Wtime() - t_start;
+  run.wall_seconds += run.stage_seconds;
   if (!s.quiet) {
     if (s.dynamic)
       PetscCall(PetscPrintf(sim.comm, "dynamic run: %" PetscInt_FMT " steps, t = %g s, %.2f s\n",
-                            run.step, run.time, run.wall_seconds));
+                            run.step, run.time, run.stage_seconds));
     else if (run.converged)
       PetscCall(PetscPrintf(sim.comm,
-                            "converged: unbalanced-force ratio %.3e <= %g after %" PetscInt_FMT
+                            "%sconverged: unbalanced-force ratio %.3e <= %g after %" PetscInt_FMT
                             " steps (%.2f s)\n",
-                            run.ratio, s.tol, run.step, run.wall_seconds));
+                            stage_tag, run.ratio, s.tol, run.stage_step, run.stage_seconds));
     else
       PetscCall(PetscPrintf(sim.comm,
-                            "NOT converged: step cap %" PetscInt_FMT " reached with "
+                            "%sNOT converged: step cap %" PetscInt_FMT " reached with "
                             "unbalanced-force ratio %.3e > %g (%.2f s)\n",
-                            s.max_steps, run.ratio, s.tol, run.wall_seconds));
+                            stage_tag, s.max_steps, run.ratio, s.tol, run.stage_seconds));
   }
   // The paper's interface keeps one normal velocity for both bodies, so it also holds them
   // together where they pull apart, and its friction counts compression only. That is sound

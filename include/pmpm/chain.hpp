@@ -149,6 +149,11 @@ void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const C
 void chain_friction_capacity(const GridView &L, const GridView &G,
                              const std::vector<Chain> &chains);
 
+// Lay the sheet where it is, unstrained: each segment's rest length becomes its current length,
+// plastic state, slip and tension start from zero (a membrane placed on settled ground; x0 keeps
+// the initial positions, so totals stay available).
+void chain_lay(Chain &c);
+
 // Elastic energy of a chain (J/m): sum_k T_k^2 l0_k / (2 J).
 double chain_elastic_energy(const Chain &c);
 

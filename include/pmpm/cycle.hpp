@@ -9,6 +9,7 @@ struct StepReport {
   G2PStats g2p;
   InterfaceStats iface;
   ContactStats contact; // chains only
+  double eigen_power = 0; // this rank's power of the imposed eigenstrain (degradation.hpp)
 };
 
 PetscErrorCode LogRegister();
@@ -19,7 +20,12 @@ PetscErrorCode InitialWaveSpeed(Simulation &sim, double *max_speed);
 // The unbalanced-force ratio of the current particle state evaluated with the given shape
 // functions (full load): the paper's equilibrium residual, eq. 13 (mpm) against eq. 19 (pmpm).
 PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio);
-// Dynamic relaxation to equilibrium (or the step cap). Collective.
+// Dynamic relaxation of the current stage (Simulation::stage) to equilibrium, or the step cap.
+// Stage 0 ramps the loads over -ramp_steps; a later stage applies its shrinkage over
+// Simulation::stage_ramp steps. Collective.
 PetscErrorCode Relax(Simulation &sim);
+// The stage loop: stage 0 (the scene's initial state under its loads), then the scene's stages,
+// each relaxed to equilibrium by Relax and recorded by the scene (stages.cpp). Collective.
+PetscErrorCode RunStages(Simulation &sim);
 
 } // namespace pmpm

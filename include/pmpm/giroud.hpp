@@ -43,6 +43,19 @@ inline double arching_pressure(double gamma, double b, double H, double q) {
   return 2.0 * gamma * b * (1.0 - e) + q * e;
 }
 
+// Terzaghi's arching pressure on a long void (trapdoor) of width B under cover H (FIELD.md 3.4):
+//   sigma_v = (gamma B / 2 - c) / (K tan phi) (1 - exp(-2 K tan phi H / B))
+//             + q exp(-2 K tan phi H / B)
+// with ktan = K tan(phi) > 0 (K = 1 and K = Ka bracket what trapdoor tests show; Giroud's 0.25 is
+// arching_pressure above), cohesion c (Pa), surcharge q (Pa). Never below zero.
+inline double terzaghi_pressure(double gamma, double B, double H, double ktan, double c = 0,
+                                double q = 0) {
+  detail::require_positive(B, "B");
+  detail::require_positive(ktan, "K tan(phi)");
+  detail::require_nonnegative(H, "H");
+  const double e = std::exp(-2.0 * ktan * H / B);
+  return std::fmax(0.0, (gamma * B / 2.0 - c) / ktan * (1.0 - e) + q * e);
+}
 // Tension factor, seed paper eq. (23) (Giroud et al. 1990):
 //   Omega = (1/4) (2y/b + b/(2y))
 // For a circular arc of chord b and sag y, the radius is R = b Omega, so T = p R = p b Omega.

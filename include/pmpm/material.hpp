@@ -21,6 +21,9 @@ struct StressBatch {
   const double *F = nullptr;    // DIM*DIM per particle: deformation gradient after the step
   double *stress = nullptr;     // NSTRESS per particle
   double *eps_p = nullptr;      // 1 per particle: accumulated equivalent plastic strain
+  // Optional eigenstrain increment (waste degradation, degradation.hpp): 3 per particle (xx,
+  // yy, zz); the stress sees de - de*. Rate-form models only (Material::rate_form).
+  const double *eigen = nullptr;
 };
 
 struct ElasticConstants {
@@ -40,6 +43,8 @@ public:
   virtual double wave_modulus() const = 0;
   // True when the model can yield: scenes report plastic state only for these.
   virtual bool plastic() const { return false; }
+  // True when the stress is updated from strain increments (an eigenstrain can be imposed).
+  virtual bool rate_form() const { return true; }
   virtual void update_stress(const StressBatch &b) const = 0;
 };
 
@@ -70,6 +75,8 @@ inline void predictor_corrector(const StressBatch &b, const ElasticConstants &el
     const int p = b.idx[k];
     Mat3 de, dw;
     strain_and_spin(b.dudx + p * DIM * DIM, de, dw);
+    if (b.eigen)
+      for (int d = 0; d < 3; ++d) de(d, d) -= b.eigen[3 * p + d];
     Mat3 s =
         jaumann_rotate(stress_to_tensor(b.stress + p * NSTRESS), dw) + elastic_increment(el, de);
     double ep = b.eps_p ? b.eps_p[p] : 0.0;

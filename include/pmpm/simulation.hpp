@@ -2,6 +2,7 @@
 // materials, the loads and boundary conditions, and the state of the relaxation.
 #pragma once
 #include "pmpm/chain.hpp"
+#include "pmpm/degradation.hpp"
 #include "pmpm/grid.hpp"
 #include "pmpm/interface.hpp"
 #include "pmpm/material.hpp"
@@ -68,12 +69,18 @@ public:
   virtual PetscErrorCode monitor(Simulation &) { return 0; }
   // Extra files (profiles); called after results, rank-collective.
   virtual PetscErrorCode write_files(Simulation &) { return 0; }
+  // Stages after stage 0 (the loads' equilibrium): how many, what each changes before it is
+  // relaxed, and what is recorded after (rank-collective). Scenes without stages have none.
+  virtual PetscInt stages() const { return 0; }
+  virtual PetscErrorCode begin_stage(Simulation &, PetscInt) { return 0; }
+  virtual PetscErrorCode end_stage(Simulation &, PetscInt) { return 0; }
 };
 
 std::unique_ptr<Scene> make_scene(const std::string &name);
 
 struct RunState {
-  PetscInt step = 0;
+  PetscInt step = 0;       // steps over all stages
+  PetscInt stage_step = 0; // steps of the current stage
   double time = 0;
   double dt = 0;
   double max_speed = 0;
@@ -81,7 +88,8 @@ struct RunState {
   double kinetic = 0;   // particle kinetic energy
   double kinetic_prev = 0;
   bool converged = false;
-  double wall_seconds = 0;
+  double wall_seconds = 0;  // all stages
+  double stage_seconds = 0; // the current stage
   PetscInt migrations = 0;
   PetscInt kinetic_resets = 0;
 };
@@ -118,6 +126,14 @@ struct Simulation {
   std::vector<std::vector<int>> mat_idx; // particles of each material (this rank)
   std::vector<PetscInt> traction_idx;    // particles carrying a traction
   std::vector<double> dudx;              // L dt per particle (scratch)
+  // Stages (stages.cpp): the current one (0: the initial state under the loads), and what the
+  // scene's begin_stage set for it: a shrinkage of the degrading zone applied over stage_ramp
+  // steps (degradation.hpp).
+  PetscInt stage = 0, nstages = 0;
+  PetscInt stage_ramp = 0;
+  double stage_shrink = 0;
+  Shrinkage shrink;
+  std::vector<double> eigen; // eigenstrain increments (scratch, 3 per particle)
   RunState run;
 };
 

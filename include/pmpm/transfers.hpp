@@ -19,6 +19,7 @@ enum Face { XMIN = 0, XMAX = 1, YMIN = 2, YMAX = 3 };
 struct Load {
   double factor = 1.0;
   double gdir[DIM] = {0.0, -1.0}; // unit direction of gravity
+  double shrink = 0; // waste degradation: volumetric shrinkage this step (degradation.hpp)
 };
 
 // idx (nidx entries) restricts the sum to some particles (an interface body); null: all.

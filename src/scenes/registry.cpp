@@ -12,6 +12,7 @@ std::unique_ptr<Scene> make_block_scene();
 std::unique_ptr<Scene> make_catenary_scene();
 std::unique_ptr<Scene> make_pullout_scene();
 std::unique_ptr<Scene> make_trench_scene();
+std::unique_ptr<Scene> make_cover_scene();
 
 std::unique_ptr<Scene> make_scene(const std::string &name) {
   if (name == "bar") return make_bar_scene();
@@ -23,6 +24,7 @@ std::unique_ptr<Scene> make_scene(const std::string &name) {
   if (name == "catenary") return make_catenary_scene();
   if (name == "pullout") return make_pullout_scene();
   if (name == "trench") return make_trench_scene();
+  if (name == "cover") return make_cover_scene();
   return nullptr;
 }
 

@@ -21,11 +21,17 @@ public:
       const int p = b.idx[k];
       const double *g = b.dudx + p * DIM * DIM;
       double *s = b.stress + p * NSTRESS;
-      const double exx = g[0], eyy = g[3], exy = 0.5 * (g[1] + g[2]), w = 0.5 * (g[1] - g[2]);
-      const double sxx = s[0], syy = s[1], sxy = s[3], ltr = lam * (exx + eyy);
+      double exx = g[0], eyy = g[3], ezz = 0;
+      if (b.eigen) {
+        exx -= b.eigen[3 * p];
+        eyy -= b.eigen[3 * p + 1];
+        ezz -= b.eigen[3 * p + 2];
+      }
+      const double exy = 0.5 * (g[1] + g[2]), w = 0.5 * (g[1] - g[2]);
+      const double sxx = s[0], syy = s[1], sxy = s[3], ltr = lam * (exx + eyy + ezz);
       s[0] = sxx + 2.0 * w * sxy + ltr + G2 * exx;
       s[1] = syy - 2.0 * w * sxy + ltr + G2 * eyy;
-      s[2] += ltr;
+      s[2] += ltr + G2 * ezz;
       s[3] = sxy + w * (syy - sxx) + G2 * exy;
     }
   }
@@ -50,6 +56,7 @@ public:
   explicit NeoHookean(const ElasticConstants &c) : c_(c) {}
   const char *model() const override { return "neo_hookean"; }
   double wave_modulus() const override { return c_.M(); }
+  bool rate_form() const override { return false; }
   void update_stress(const StressBatch &b) const override {
     for (int k = 0; k < b.n; ++k) {
       const int p = b.idx[k];

@@ -1,0 +1,790 @@
+// A landfill cover at field scale, described in an options file (FIELD.md): waste below a surface
+// profile (a top deck at a grade, or a side slope with its toe and crest, or any polyline), cover
+// layers over it from the top down, each a thickness (varying linearly across the width if asked)
+// and a material, geomembranes as chains (chain.hpp) at the base of named layers, and stages
+// that make the waste subside (stages.cpp):
+//   stage 0        the geostatic state: gravity on, equilibrium; then the membranes are laid
+//                  unstrained where they are and displacements are measured from here
+//   shrink stages  an imposed volumetric shrinkage of a zone of waste (degradation.hpp), the
+//                  total split into equal stages
+//   void stages    a void opening in the waste under the cover: the waste particles in a
+//                  rectangle of growing width are removed (the material is lost), so the cover
+//                  arches over it or falls into it
+// Each stage is recorded in stages.csv and as a ParaView frame; the final state gives the design
+// answers (peak membrane strain and tension against an allowable strain, slack, slip, plastic
+// and tensile strain in the cover) beside the closed forms for the same geometry (Giroud with
+// Terzaghi's arching for a void, infinite-slope and Koerner-Soong factors of safety for a slope).
+//
+// Geometry need not fit the grid: particles fill each band (waste, then each layer) column by
+// column, with the band's thickness at the column split into whole rows, so a 0.3 m layer is
+// 0.3 m thick at any cell size (blocks are at most h / ppc tall and at most h / 2, as PMPM needs).
+#include "pmpm/giroud.hpp"
+#include "pmpm/materials/drucker_prager.hpp"
+#include "pmpm/output.hpp"
+#include "pmpm/scene_util.hpp"
+#include "pmpm/veneer.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+namespace pmpm {
+
+namespace {
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr int kMaxList = 16;
+
+struct Layer { // bottom-up in Layer order inside the scene
+  std::string name;
+  int mat = 0;
+  double t_start = 0, t_end = 0; // vertical thickness at x = 0 and x = W (m)
+  double thickness(double x, double W) const { return t_start + (t_end - t_start) * x / W; }
+};
+
+struct Membrane {
+  std::string name, material, under; // the chain lies at the base of layer `under`
+  int layer = 0;                      // index of `under` in the bottom-up list
+  double thickness = 0;
+};
+
+struct StageRow {
+  int stage = 0;
+  std::string kind;
+  double shrink = 0, void_width = 0;
+  double surface_settlement = 0, membrane_settlement = 0, differential = 0;
+  double peak_strain = 0, peak_strain_x = 0, peak_tension = 0, slip = 0, cover_eps_p = 0;
+  double ratio = 0, wall = 0;
+  PetscInt steps = 0;
+  bool converged = false;
+};
+
+// Largest principal stretch minus one of a 2x2 F (the largest tensile strain).
+double max_principal_strain(const double *F) {
+  const double c11 = F[0] * F[0] + F[2] * F[2], c22 = F[1] * F[1] + F[3] * F[3],
+               c12 = F[0] * F[1] + F[2] * F[3];
+  const double m = 0.5 * (c11 + c22), d = std::sqrt(0.25 * (c11 - c22) * (c11 - c22) + c12 * c12);
+  return std::sqrt(m + d) - 1.0;
+}
+
+// Names from a comma-separated string option (PetscOptionsStringArray's strings, freed).
+void TakeNames(char **names, PetscInt n, std::vector<std::string> &out) {
+  out.clear();
+  for (PetscInt k = 0; k < n; ++k) {
+    out.emplace_back(names[k]);
+    PetscFree(names[k]);
+  }
+}
+} // namespace
+
+class CoverScene final : public Scene {
+  // geometry (m)
+  double W_ = 40, Hw_ = 10, grade_ = 0;                    // width, waste height, deck grade (%)
+  double slope_deg_ = 0, slope_len_ = 0, toe_x_ = 0;       // side slope
+  std::vector<double> surf_;                               // waste surface polyline x,y,...
+  std::vector<Layer> layers_;                              // bottom-up
+  std::vector<Membrane> mem_;                              // bottom-up
+  std::string waste_mat_ = "waste";
+  // stages
+  double shrink_total_ = 0;
+  PetscInt shrink_stages_ = 0, shrink_steps_ = 0;
+  double void_x_ = 0, void_h_ = 0, void_depth_ = 0;
+  std::vector<double> void_w_;
+  double allowable_ = 0.03;
+  // derived
+  double dxp_ = 0;           // particle column spacing h / ppc
+  PetscInt ncol_ = 0, R_ = 0; // columns; pid stride per column
+  std::vector<PetscInt> surface_pid_; // the top particle of each column (sorted)
+  std::vector<char> cover_mat_;       // per material: a cover layer's
+  double cum_shrink_ = 0, void_now_ = 0, void_eff_ = 0;
+  // references at the end of stage 0 (rank 0 for the surface; chains on every rank)
+  std::map<PetscInt, double> surf_ref_;
+  std::vector<std::vector<double>> chain_ref_;
+  std::vector<StageRow> rows_;
+
+  // waste surface height at x
+  double ys(double x) const {
+    const size_t n = surf_.size() / 2;
+    if (x <= surf_[0]) return surf_[1];
+    for (size_t k = 0; k + 1 < n; ++k)
+      if (x <= surf_[2 * k + 2]) {
+        const double r = (x - surf_[2 * k]) / (surf_[2 * k + 2] - surf_[2 * k]);
+        return surf_[2 * k + 1] + r * (surf_[2 * k + 3] - surf_[2 * k + 1]);
+      }
+    return surf_[2 * n - 1];
+  }
+  // band boundaries at x, bottom-up: 0, waste top, top of each layer
+  void bands(double x, std::vector<double> &b) const {
+    b.assign(1, 0.0);
+    b.push_back(ys(x));
+    for (const Layer &l : layers_) b.push_back(b.back() + l.thickness(x, W_));
+  }
+  // height of the base of layer k at x
+  double layer_base(int k, double x) const {
+    double y = ys(x);
+    for (int j = 0; j < k; ++j) y += layers_[j].thickness(x, W_);
+    return y;
+  }
+  bool in_void(const double X[DIM], double width) const {
+    if (width <= 0) return false;
+    const double top = ys(X[0]) - void_depth_;
+    return std::fabs(X[0] - void_x_) <= 0.5 * width && X[1] <= top && X[1] >= top - void_h_;
+  }
+  // rows of a band of thickness d: whole rows no taller than the particle spacing
+  PetscInt rows_in(double d) const {
+    return d > 0 ? static_cast<PetscInt>(std::ceil(d / dxp_ - 1e-9)) : 0;
+  }
+
+  PetscErrorCode ReadOptions(Simulation &sim) {
+    std::vector<std::string> layer_names, mem_names;
+    PetscInt nsurf = 2 * kMaxList, nvoid = kMaxList;
+    PetscBool surf_set = PETSC_FALSE;
+    std::vector<double> surf(2 * kMaxList), vw(kMaxList);
+    double zx[2] = {0, 0}, gr[2] = {1, 1};
+    PetscInt nz = 2, ng = 2, nl = kMaxList, nm = kMaxList;
+    PetscBool vw_set = PETSC_FALSE, zx_set = PETSC_FALSE, gr_set = PETSC_FALSE, l_set = PETSC_FALSE, m_set = PETSC_FALSE;
+    char *lnames[kMaxList], *mnames[kMaxList], wbuf[64];
+    PetscFunctionBeginUser;
+    PetscCall(PetscStrncpy(wbuf, waste_mat_.c_str(), sizeof(wbuf)));
+    PetscOptionsBegin(sim.comm, "cover_", "Field-scale landfill cover (FIELD.md)", nullptr);
+    PetscCall(PetscOptionsReal("-width", "Width of the model W (m)", nullptr, W_, &W_, nullptr));
+    PetscCall(PetscOptionsReal("-waste_height",
+                               "Waste thickness at x = 0 (m; the deck, without a side slope)",
+                               nullptr, Hw_, &Hw_, nullptr));
+    PetscCall(PetscOptionsReal("-deck_grade", "Top deck grade (per cent, rising to the right)",
+                               nullptr, grade_, &grade_, nullptr));
+    PetscCall(PetscOptionsReal("-slope_angle", "Side slope angle beta (degrees; 0: no side slope)",
+                               nullptr, slope_deg_, &slope_deg_, nullptr));
+    PetscCall(PetscOptionsReal("-slope_length",
+                               "Side slope length along the slope from toe to crest (m)", nullptr,
+                               slope_len_, &slope_len_, nullptr));
+    PetscCall(PetscOptionsReal("-toe_x",
+                               "x of the slope's toe (m); the ground left of it is level at "
+                               "-cover_waste_height",
+                               nullptr, toe_x_, &toe_x_, nullptr));
+    PetscCall(PetscOptionsRealArray("-surface",
+                                    "Waste surface as a polyline x0,y0,x1,y1,... (m, x "
+                                    "increasing from 0 to W; overrides the deck and slope)",
+                                    nullptr, surf.data(), &nsurf, &surf_set));
+    PetscCall(PetscOptionsStringArray("-layers", "Cover layers from the top down (names)",
+                                      nullptr, lnames, &nl, &l_set));
+    PetscCall(PetscOptionsString("-waste_material", "Material of the waste (-mat_<name>_*)",
+                                 nullptr, wbuf, wbuf, sizeof(wbuf), nullptr));
+    PetscCall(PetscOptionsStringArray(
+        "-membranes", "Geomembranes as chains (names; each -cover_membrane_<name>_under)", nullptr,
+        mnames, &nm, &m_set));
+    PetscCall(PetscOptionsReal("-shrink_total",
+                               "Waste degradation: total volumetric shrinkage e_v of the zone "
+                               "(log strain, 0..0.6; 0: none)",
+                               nullptr, shrink_total_, &shrink_total_, nullptr));
+    PetscCall(PetscOptionsInt("-shrink_stages", "Stages the shrinkage is applied in (equal parts)",
+                              nullptr, shrink_stages_, &shrink_stages_, nullptr));
+    PetscCall(PetscOptionsInt("-shrink_steps",
+                              "Steps over which each stage's shrinkage is applied (0: auto, "
+                              "4 wave transits of the model's height)",
+                              nullptr, shrink_steps_, &shrink_steps_, nullptr));
+    PetscCall(PetscOptionsEnum("-shrink_mode",
+                               "Shrinkage eigenstrain: vertical (e*_yy = -e_v) or isotropic "
+                               "(-e_v/3 on xx, yy, zz)",
+                               nullptr, ShrinkModeNames, (PetscEnum)sim.shrink.mode,
+                               (PetscEnum *)&sim.shrink.mode, nullptr));
+    PetscCall(PetscOptionsRealArray("-shrink_x", "Degrading zone x_lo,x_hi (m; default all)",
+                                    nullptr, zx, &nz, &zx_set));
+    PetscCall(PetscOptionsReal("-shrink_taper",
+                               "Shrinkage falls linearly to 0 over this distance outside the "
+                               "zone (m)",
+                               nullptr, sim.shrink.taper, &sim.shrink.taper, nullptr));
+    PetscCall(PetscOptionsRealArray("-shrink_grade",
+                                    "Shrinkage factors at the waste base and top, bottom,top "
+                                    "(linear with height; 1,1: uniform)",
+                                    nullptr, gr, &ng, &gr_set));
+    PetscCall(PetscOptionsReal("-void_x", "Void centre x (m)", nullptr, void_x_, &void_x_, nullptr));
+    PetscCall(PetscOptionsRealArray("-void_widths",
+                                    "Void width at each void stage (m, non-decreasing; none: no "
+                                    "void)",
+                                    nullptr, vw.data(), &nvoid, &vw_set));
+    PetscCall(PetscOptionsReal("-void_height", "Void height (m)", nullptr, void_h_, &void_h_,
+                               nullptr));
+    PetscCall(PetscOptionsReal("-void_depth",
+                               "Depth of the void's top below the waste surface (m; 0: it "
+                               "touches the cover)",
+                               nullptr, void_depth_, &void_depth_, nullptr));
+    PetscCall(PetscOptionsReal("-allowable_strain",
+                               "Allowable membrane strain for the PASS / EXCEEDED verdict "
+                               "(design limits for local strain are a few per cent, FIELD.md 2)",
+                               nullptr, allowable_, &allowable_, nullptr));
+    PetscOptionsEnd();
+    waste_mat_ = wbuf;
+    if (l_set) TakeNames(lnames, nl, layer_names);
+    if (m_set) TakeNames(mnames, nm, mem_names);
+    void_w_.assign(vw.begin(), vw.begin() + (vw_set ? nvoid : 0));
+    if (surf_set) {
+      PetscCheck(nsurf >= 4 && nsurf % 2 == 0, sim.comm, PETSC_ERR_USER_INPUT,
+                 "-cover_surface needs pairs x,y (at least 2 points), got %d numbers", (int)nsurf);
+      surf_.assign(surf.begin(), surf.begin() + nsurf);
+    }
+    if (zx_set) {
+      PetscCheck(nz == 2 && zx[1] > zx[0], sim.comm, PETSC_ERR_USER_INPUT,
+                 "-cover_shrink_x needs x_lo,x_hi with x_lo < x_hi");
+      sim.shrink.x_lo = zx[0];
+      sim.shrink.x_hi = zx[1];
+    }
+    PetscCheck(!gr_set || ng == 2, sim.comm, PETSC_ERR_USER_INPUT, "-cover_shrink_grade needs bottom,top");
+    sim.shrink.grade_bottom = gr[0];
+    sim.shrink.grade_top = gr[1];
+
+    // layers and membranes: their own prefixed options
+    PetscCheck(!layer_names.empty(), sim.comm, PETSC_ERR_USER_INPUT,
+               "-cover_layers needs at least one layer");
+    layers_.clear();
+    for (auto it = layer_names.rbegin(); it != layer_names.rend(); ++it) {
+      Layer L;
+      L.name = *it;
+      char mat[64];
+      PetscCall(PetscStrncpy(mat, L.name.c_str(), sizeof(mat)));
+      double t = 0, te = -1;
+      const std::string pre = "cover_layer_" + L.name + "_";
+      PetscOptionsBegin(sim.comm, pre.c_str(), ("Cover layer " + L.name).c_str(), nullptr);
+      PetscCall(PetscOptionsReal("-thickness", "Vertical thickness (m), > 0", nullptr, t, &t,
+                                 nullptr));
+      PetscCall(PetscOptionsReal("-thickness_end",
+                                 "Thickness at x = W (m; default: -thickness, uniform)", nullptr,
+                                 te, &te, nullptr));
+      PetscCall(PetscOptionsString("-material", "Material (-mat_<name>_*; default: the layer's)",
+                                   nullptr, mat, mat, sizeof(mat), nullptr));
+      PetscOptionsEnd();
+      PetscCheck(t > 0, sim.comm, PETSC_ERR_USER_INPUT,
+                 "-%sthickness is required and must be > 0 (got %g)", pre.c_str(), t);
+      PetscCheck(te < 0 || te > 0, sim.comm, PETSC_ERR_USER_INPUT,
+                 "-%sthickness_end must be > 0 (got %g)", pre.c_str(), te);
+      L.t_start = t;
+      L.t_end = te > 0 ? te : t;
+      L.mat = -1;
+      layers_.push_back(L);
+      layer_mats_.push_back(mat);
+    }
+    mem_.clear();
+    for (const std::string &nm : mem_names) {
+      Membrane M;
+      M.name = nm;
+      M.material = nm;
+      char under[64] = "", mat[64];
+      PetscCall(PetscStrncpy(mat, nm.c_str(), sizeof(mat)));
+      const std::string pre = "cover_membrane_" + nm + "_";
+      PetscOptionsBegin(sim.comm, pre.c_str(), ("Cover membrane " + nm).c_str(), nullptr);
+      PetscCall(PetscOptionsString("-under", "The layer the membrane lies under (its base)",
+                                   nullptr, under, under, sizeof(under), nullptr));
+      PetscCall(PetscOptionsReal("-thickness", "Sheet thickness t (m), > 0", nullptr, M.thickness,
+                                 &M.thickness, nullptr));
+      PetscCall(PetscOptionsString("-material", "Material (-mat_<name>_*; default: the membrane's)",
+                                   nullptr, mat, mat, sizeof(mat), nullptr));
+      PetscOptionsEnd();
+      M.material = mat;
+      M.under = under;
+      M.layer = -1;
+      for (size_t k = 0; k < layers_.size(); ++k)
+        if (layers_[k].name == M.under) M.layer = static_cast<int>(k);
+      PetscCheck(M.layer >= 0, sim.comm, PETSC_ERR_USER_INPUT,
+                 "-%sunder must name one of -cover_layers (got \"%s\")", pre.c_str(), under);
+      PetscCheck(M.thickness > 0, sim.comm, PETSC_ERR_USER_INPUT,
+                 "-%sthickness is required and must be > 0 (got %g)", pre.c_str(), M.thickness);
+      mem_.push_back(M);
+    }
+    std::sort(mem_.begin(), mem_.end(),
+              [](const Membrane &a, const Membrane &b) { return a.layer < b.layer; });
+    PetscFunctionReturn(0);
+  }
+  std::vector<std::string> layer_mats_; // bottom-up, parallel to layers_
+
+  PetscErrorCode Validate(Simulation &sim) {
+    PetscFunctionBeginUser;
+    PetscCheck(W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-cover_width must be > 0 (got %g)", W_);
+    PetscCheck(Hw_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-cover_waste_height must be > 0 (got %g)", Hw_);
+    if (surf_.empty()) {
+      const double g = grade_ / 100.0;
+      if (slope_len_ > 0) {
+        PetscCheck(slope_deg_ > 0 && slope_deg_ < 60, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_slope_angle must be in (0, 60) degrees with -cover_slope_length "
+                   "(got %g)",
+                   slope_deg_);
+        const double xc = toe_x_ + slope_len_ * std::cos(slope_deg_ * kDeg);
+        const double yc = Hw_ + slope_len_ * std::sin(slope_deg_ * kDeg);
+        PetscCheck(toe_x_ >= 0 && xc < W_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_toe_x %g and -cover_slope_length %g put the crest at x = %g m, beyond "
+                   "-cover_width %g",
+                   toe_x_, slope_len_, xc, W_);
+        surf_ = {0, Hw_, toe_x_, Hw_, xc, yc, W_, yc + g * (W_ - xc)};
+      } else {
+        surf_ = {0, Hw_, W_, Hw_ + g * W_};
+      }
+    }
+    const size_t n = surf_.size() / 2;
+    PetscCheck(std::fabs(surf_[0]) < 1e-12 && std::fabs(surf_[2 * n - 2] - W_) < 1e-9 * W_,
+               sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-cover_surface must run from x = 0 to x = -cover_width %g", W_);
+    for (size_t k = 0; k < n; ++k) {
+      PetscCheck(surf_[2 * k + 1] > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-cover_surface: the waste surface must lie above y = 0 (point %d)", (int)k);
+      if (k + 1 < n)
+        PetscCheck(surf_[2 * k + 2] > surf_[2 * k], sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_surface: x must increase (point %d)", (int)k + 1);
+    }
+    PetscCheck(shrink_total_ >= 0 && shrink_total_ <= 0.6, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-cover_shrink_total must be in [0, 0.6] (got %g)", shrink_total_);
+    PetscCheck(shrink_stages_ >= 0 && shrink_stages_ <= 100, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-cover_shrink_stages must be in 0..100 (got %d)", (int)shrink_stages_);
+    PetscCheck(!(shrink_total_ > 0 && shrink_stages_ == 0), sim.comm, PETSC_ERR_USER_INPUT,
+               "-cover_shrink_total %g needs -cover_shrink_stages >= 1", shrink_total_);
+    PetscCheck(shrink_steps_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-cover_shrink_steps must be >= 0");
+    PetscCheck(sim.shrink.taper >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-cover_shrink_taper must be >= 0");
+    PetscCheck(sim.shrink.grade_bottom >= 0 && sim.shrink.grade_top >= 0, sim.comm,
+               PETSC_ERR_ARG_OUTOFRANGE, "-cover_shrink_grade factors must be >= 0");
+    for (size_t k = 0; k < void_w_.size(); ++k)
+      PetscCheck(void_w_[k] > 0 && (k == 0 || void_w_[k] >= void_w_[k - 1]), sim.comm,
+                 PETSC_ERR_ARG_OUTOFRANGE,
+                 "-cover_void_widths must be positive and non-decreasing (entry %d: %g)", (int)k,
+                 void_w_[k]);
+    if (!void_w_.empty()) {
+      const double w = void_w_.back();
+      PetscCheck(void_x_ - w / 2 > 0 && void_x_ + w / 2 < W_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-cover_void_x %g with width %g puts the void outside (0, %g)", void_x_, w, W_);
+      PetscCheck(void_h_ > 0 && void_depth_ >= 0 && void_depth_ + void_h_ < ys(void_x_), sim.comm,
+                 PETSC_ERR_ARG_OUTOFRANGE,
+                 "-cover_void_height %g (> 0) and -cover_void_depth %g (>= 0) must fit in the "
+                 "waste (%g m thick at the void)",
+                 void_h_, void_depth_, ys(void_x_));
+      PetscCheck(void_w_.front() >= 2 * dxp_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-cover_void_widths %g is less than two particle columns (%g m): refine "
+                 "-cell_size",
+                 void_w_.front(), 2 * dxp_);
+    }
+    PetscCheck(allowable_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-cover_allowable_strain must be > 0");
+    PetscFunctionReturn(0);
+  }
+
+public:
+  PetscErrorCode setup(Simulation &sim) override {
+    PetscFunctionBeginUser;
+    dxp_ = sim.set.h / sim.set.ppc;
+    PetscCall(ReadOptions(sim));
+    PetscCall(Validate(sim));
+    // the box: the width (a whole number of cells) and the highest cover top plus headroom
+    PetscInt nW;
+    PetscCall(CheckCells(sim.comm, "-cover_width", W_, sim.set.h, &nW));
+    double top = 0;
+    std::vector<double> b;
+    for (size_t k = 0; k < surf_.size() / 2; ++k) {
+      bands(surf_[2 * k], b);
+      top = std::fmax(top, b.back());
+    }
+    sim.origin[0] = sim.origin[1] = 0;
+    sim.ncell[0] = nW;
+    sim.ncell[1] = static_cast<PetscInt>(std::ceil(top / sim.set.h - 1e-9)) + 2;
+    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
+    sim.face[YMIN] = FaceBC::Fixed;
+    // materials: the waste first, then each distinct layer material
+    std::vector<std::string> names = {waste_mat_};
+    for (size_t k = 0; k < layers_.size(); ++k) {
+      auto it = std::find(names.begin(), names.end(), layer_mats_[k]);
+      layers_[k].mat = static_cast<int>(it - names.begin());
+      if (it == names.end()) names.push_back(layer_mats_[k]);
+    }
+    sim.mats.resize(names.size());
+    cover_mat_.assign(names.size(), 0);
+    for (size_t m = 0; m < names.size(); ++m)
+      PetscCall(MaterialFromOptions(sim.comm, names[m], sim.mats[m]));
+    for (const Layer &l : layers_) cover_mat_[l.mat] = 1;
+    PetscCheck(!cover_mat_[0], sim.comm, PETSC_ERR_USER_INPUT,
+               "-cover_waste_material %s is also a cover layer's material: give the waste its own",
+               waste_mat_.c_str());
+    // degradation: the waste shrinks (rate-form materials only)
+    sim.shrink.degrades.assign(names.size(), 0);
+    sim.shrink.degrades[0] = 1;
+    sim.shrink.y_lo = 0;
+    sim.shrink.y_hi = 1e300;
+    if (shrink_total_ > 0) {
+      double ytop = 0;
+      for (size_t k = 0; k < surf_.size() / 2; ++k) ytop = std::fmax(ytop, surf_[2 * k + 1]);
+      sim.shrink.y_hi = ytop; // grading is linear from the base to the highest waste surface
+      PetscCheck(sim.mats[0].model->rate_form(), sim.comm, PETSC_ERR_SUP,
+                 "-cover_shrink_total needs a rate-form waste material (linear_elastic, "
+                 "drucker_prager, von_mises), not -mat_%s_model %s",
+                 waste_mat_.c_str(), sim.mats[0].model->model());
+    }
+    // membranes: chains at the base of their layers, ends half a point spacing inside the walls
+    for (const Membrane &M : mem_) {
+      ChainSpec cs;
+      cs.name = M.name;
+      cs.material = M.material;
+      cs.thickness = M.thickness;
+      const double e = 0.5 * sim.chain_spacing * sim.set.h;
+      cs.line = {e, layer_base(M.layer, e)};
+      for (size_t k = 1; k + 1 < surf_.size() / 2; ++k)
+        if (surf_[2 * k] > e && surf_[2 * k] < W_ - e) {
+          cs.line.push_back(surf_[2 * k]);
+          cs.line.push_back(layer_base(M.layer, surf_[2 * k]));
+        }
+      cs.line.push_back(W_ - e);
+      cs.line.push_back(layer_base(M.layer, W_ - e));
+      sim.chain_specs.push_back(cs);
+    }
+    // particle columns and their ids: column i holds at most R_ rows
+    ncol_ = static_cast<PetscInt>(std::llround(W_ / dxp_));
+    R_ = sim.ncell[1] * sim.set.ppc + static_cast<PetscInt>(layers_.size()) + 2;
+    surface_pid_.clear();
+    for (PetscInt i = 0; i < ncol_; ++i) {
+      bands((i + 0.5) * dxp_, b);
+      PetscInt rows = 0;
+      for (size_t k = 0; k + 1 < b.size(); ++k) rows += rows_in(b[k + 1] - b[k]);
+      surface_pid_.push_back(i * R_ + rows - 1);
+    }
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+    PetscFunctionBeginUser;
+    std::vector<double> b;
+    for (PetscInt i = 0; i < ncol_; ++i) {
+      const double x = (i + 0.5) * dxp_;
+      bands(x, b);
+      PetscInt row = 0;
+      for (size_t k = 0; k + 1 < b.size(); ++k) {
+        const double d = b[k + 1] - b[k];
+        const PetscInt n = rows_in(d);
+        const int mat = k == 0 ? 0 : layers_[k - 1].mat;
+        for (PetscInt r = 0; r < n; ++r, ++row) {
+          ParticleInit q{};
+          const double dy = d / n;
+          q.x[0] = x;
+          q.x[1] = b[k] + (r + 0.5) * dy;
+          const PetscInt c[DIM] = {static_cast<PetscInt>(std::floor(q.x[0] / sim.set.h)),
+                                   static_cast<PetscInt>(std::floor(q.x[1] / sim.set.h))};
+          if (!sim.grid.owns_cell(c)) continue;
+          q.lp[0] = 0.5 * dxp_;
+          q.lp[1] = 0.5 * dy;
+          q.vol = dxp_ * dy;
+          q.mat = mat;
+          q.density = sim.mats[mat].density;
+          q.gamma = sim.mats[mat].gamma;
+          q.pid = i * R_ + row;
+          out.push_back(q);
+        }
+      }
+    }
+    PetscFunctionReturn(0);
+  }
+
+  PetscInt stages() const override {
+    return (shrink_total_ > 0 ? shrink_stages_ : 0) + static_cast<PetscInt>(void_w_.size());
+  }
+
+  PetscErrorCode begin_stage(Simulation &sim, PetscInt k) override {
+    PetscFunctionBeginUser;
+    if (k == 0) PetscFunctionReturn(0);
+    const PetscInt ns = shrink_total_ > 0 ? shrink_stages_ : 0;
+    if (k <= ns) {
+      sim.stage_shrink = shrink_total_ / double(ns);
+      // apply it over a few wave transits of the model's height: fast enough that the
+      // relaxation does not wait, slow enough that the waste follows without ringing
+      PetscInt steps = shrink_steps_;
+      if (steps == 0) steps = static_cast<PetscInt>(4 * sim.ncell[1] / sim.set.cfl);
+      sim.stage_ramp = steps;
+      cum_shrink_ += sim.stage_shrink;
+      PetscFunctionReturn(0);
+    }
+    // a void stage: remove the waste particles inside the void's current width
+    void_now_ = void_w_[k - ns - 1];
+    ParticleView P;
+    std::vector<PetscInt> gone;
+    PetscCall(ParticlesGetView(sim.parts, P));
+    for (PetscInt p = 0; p < P.n; ++p)
+      if (P.mat[p] == 0 && in_void(P.x0 + p * DIM, void_now_)) gone.push_back(p);
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    for (auto it = gone.rbegin(); it != gone.rend(); ++it)
+      PetscCall(DMSwarmRemovePointAtIndex(sim.parts.sw, *it));
+    PetscCall(SimulationIndexParticles(sim));
+    // the void's width as the particles see it: whole columns
+    PetscInt ncols = 0;
+    for (PetscInt i = 0; i < ncol_; ++i)
+      ncols += std::fabs((i + 0.5) * dxp_ - void_x_) <= 0.5 * void_now_;
+    void_eff_ = ncols * dxp_;
+    PetscFunctionReturn(0);
+  }
+
+  // Surface settlement per column relative to stage 0 (rank 0): gather the top particles.
+  PetscErrorCode SurfaceSettlement(Simulation &sim, double *smax) {
+    ParticleView P;
+    std::vector<double> mine;
+    PetscFunctionBeginUser;
+    PetscCall(ParticlesGetView(sim.parts, P));
+    for (PetscInt p = 0; p < P.n; ++p)
+      if (std::binary_search(surface_pid_.begin(), surface_pid_.end(), P.pid[p])) {
+        mine.push_back(static_cast<double>(P.pid[p]));
+        mine.push_back(P.x[p * DIM + 1]);
+      }
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    int n = static_cast<int>(mine.size());
+    std::vector<int> counts(sim.size), displs(sim.size, 0);
+    PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, sim.comm));
+    int total = 0;
+    if (sim.rank == 0)
+      for (int r = 0; r < sim.size; ++r) displs[r] = total, total += counts[r];
+    std::vector<double> all(sim.rank == 0 ? total : 0);
+    PetscCallMPI(MPI_Gatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
+                             MPI_DOUBLE, 0, sim.comm));
+    *smax = 0;
+    for (int j = 0; j + 1 < total; j += 2) {
+      const PetscInt id = static_cast<PetscInt>(all[j]);
+      if (sim.stage == 0)
+        surf_ref_[id] = all[j + 1];
+      else if (surf_ref_.count(id))
+        *smax = std::fmax(*smax, surf_ref_[id] - all[j + 1]);
+    }
+    PetscFunctionReturn(0);
+  }
+
+  // Largest plastic strain and tensile strain in the cover layers (global).
+  PetscErrorCode CoverStrains(Simulation &sim, std::vector<double> &layer_tension, double *epmax) {
+    ParticleView P;
+    PetscFunctionBeginUser;
+    std::vector<double> mx(sim.mats.size() + 1, 0.0);
+    PetscCall(ParticlesGetView(sim.parts, P));
+    for (PetscInt p = 0; p < P.n; ++p) {
+      const int m = static_cast<int>(P.mat[p]);
+      if (!cover_mat_[m]) continue;
+      mx[m] = std::fmax(mx[m], max_principal_strain(P.F + p * DIM * DIM));
+      mx.back() = std::fmax(mx.back(), P.eps_p[p]);
+    }
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx.data(), static_cast<int>(mx.size()), MPI_DOUBLE,
+                               MPI_MAX, sim.comm));
+    layer_tension.assign(mx.begin(), mx.end() - 1);
+    *epmax = mx.back();
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode end_stage(Simulation &sim, PetscInt k) override {
+    PetscFunctionBeginUser;
+    if (k == 0) { // lay the membranes unstrained on the settled ground; displacements from here
+      chain_ref_.clear();
+      for (Chain &c : sim.chains) {
+        chain_lay(c);
+        chain_ref_.push_back(c.x);
+      }
+    }
+    StageRow r;
+    r.stage = static_cast<int>(k);
+    const PetscInt ns = shrink_total_ > 0 ? shrink_stages_ : 0;
+    r.kind = k == 0 ? "geostatic" : k <= ns ? "shrink" : "void";
+    r.shrink = cum_shrink_;
+    r.void_width = void_now_ > 0 ? void_eff_ : 0;
+    PetscCall(SurfaceSettlement(sim, &r.surface_settlement));
+    std::vector<double> lt;
+    PetscCall(CoverStrains(sim, lt, &r.cover_eps_p));
+    if (!sim.chains.empty()) { // the top-most membrane is the one reported per stage
+      const Chain &c = sim.chains.back();
+      const std::vector<double> &ref = chain_ref_.back();
+      double smax = -1e300, smin = 1e300;
+      for (int i = 0; i < c.n; ++i) {
+        const double s = ref[i * DIM + 1] - c.x[i * DIM + 1];
+        smax = std::fmax(smax, s);
+        smin = std::fmin(smin, s);
+        r.slip = std::fmax(r.slip, std::fmax(std::fabs(c.slip_top[i]), std::fabs(c.slip_bot[i])));
+      }
+      r.membrane_settlement = smax;
+      r.differential = smax - smin;
+      for (int j = 0; j + 1 < c.n; ++j)
+        if (c.eps[j] > r.peak_strain) {
+          r.peak_strain = c.eps[j];
+          r.peak_strain_x = 0.5 * (c.x0[j * DIM] + c.x0[(j + 1) * DIM]);
+        }
+      for (int j = 0; j + 1 < c.n; ++j) r.peak_tension = std::fmax(r.peak_tension, c.T[j]);
+    }
+    r.steps = sim.run.stage_step;
+    r.ratio = sim.run.ratio;
+    r.wall = sim.run.stage_seconds;
+    r.converged = sim.run.converged;
+    rows_.push_back(r);
+    // the record so far, complete after every stage; a frame for ParaView
+    PetscCall(OutputPrepareDirectory(sim));
+    if (sim.rank == 0) {
+      const std::string path = sim.set.output_dir + "/stages.csv";
+      FILE *f = std::fopen((path + ".tmp").c_str(), "w");
+      PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
+      std::fprintf(f, "stage,kind,shrinkage,void_width,surface_settlement,membrane_settlement,"
+                      "differential_settlement,peak_strain,peak_strain_x,peak_tension,max_slip,"
+                      "cover_max_eps_p,steps,ratio,converged,wall_seconds\n");
+      for (const StageRow &q : rows_)
+        std::fprintf(f, "%d,%s,%.6g,%.6g,%.8e,%.8e,%.8e,%.8e,%.6g,%.8e,%.8e,%.8e,%d,%.3e,%d,%.3f\n",
+                     q.stage, q.kind.c_str(), q.shrink, q.void_width, q.surface_settlement,
+                     q.membrane_settlement, q.differential, q.peak_strain, q.peak_strain_x,
+                     q.peak_tension, q.slip, q.cover_eps_p, (int)q.steps, q.ratio,
+                     q.converged ? 1 : 0, q.wall);
+      std::fclose(f);
+    }
+    PetscCall(OutputCommit(sim, "stages.csv"));
+    char name[64];
+    snprintf(name, sizeof(name), "series/stage_%03d.h5", (int)k);
+    PetscCall(OutputParticles(sim, name));
+    if (!sim.set.quiet)
+      PetscCall(PetscPrintf(sim.comm,
+                            "stage %d (%s): surface settlement %.4g m, membrane settlement %.4g m "
+                            "(differential %.4g m), peak membrane strain %.3f %%, tension %.4g "
+                            "N/m, %d steps\n",
+                            r.stage, r.kind.c_str(), r.surface_settlement, r.membrane_settlement,
+                            r.differential, 100 * r.peak_strain, r.peak_tension, (int)r.steps));
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode results(Simulation &sim, std::string &json) override {
+    PetscFunctionBeginUser;
+    std::vector<double> lt;
+    double ep = 0;
+    PetscCall(CoverStrains(sim, lt, &ep));
+    const char *sep = ",\n    ";
+    std::string layers = "{";
+    for (size_t k = layers_.size(); k-- > 0;) {
+      layers += "\"" + layers_[k].name + "\": {" +
+                json_kv("max_tensile_strain", lt[layers_[k].mat]) + "}";
+      if (k > 0) layers += ", ";
+    }
+    layers += "}";
+    json = json_kv("stages", double(rows_.size() - 1)) + sep +
+           json_kv("cover_max_eps_p", ep) + sep + "\"layers\": " + layers;
+    json += sep + json_kv("surface_settlement", rows_.back().surface_settlement);
+    if (!sim.chains.empty()) {
+      const Chain &c = sim.chains.back();
+      int jp = 0, jt = 0, it = 0, ib = 0;
+      double slack_len = 0, slack_lo = 1e300, slack_hi = -1e300;
+      for (int j = 0; j + 1 < c.n; ++j) {
+        if (c.eps[j] > c.eps[jp]) jp = j;
+        if (c.T[j] > c.T[jt]) jt = j;
+        if (c.slack[j]) {
+          slack_len += c.l0[j];
+          slack_lo = std::fmin(slack_lo, c.x0[j * DIM]);
+          slack_hi = std::fmax(slack_hi, c.x0[(j + 1) * DIM]);
+        }
+      }
+      for (int i = 0; i < c.n; ++i) {
+        if (std::fabs(c.slip_top[i]) > std::fabs(c.slip_top[it])) it = i;
+        if (std::fabs(c.slip_bot[i]) > std::fabs(c.slip_bot[ib])) ib = i;
+      }
+      const double xm = [&](int j) { return 0.5 * (c.x0[j * DIM] + c.x0[(j + 1) * DIM]); }(jp);
+      const double xt = 0.5 * (c.x0[jt * DIM] + c.x0[(jt + 1) * DIM]);
+      const bool pass = c.eps[jp] <= allowable_;
+      json += sep + std::string("\"membrane\": {") + "\"name\": \"" + c.name + "\", " +
+              json_kv("peak_strain", c.eps[jp]) + ", " + json_kv("peak_strain_x", xm) + ", " +
+              json_kv("peak_tension", c.T[jt]) + ", " + json_kv("peak_tension_x", xt) + ", " +
+              json_kv("allowable_strain", allowable_) + ", \"verdict\": \"" +
+              (pass ? "PASS" : "EXCEEDED") + "\", " + json_kv("slack_length", slack_len) +
+              ", " + json_kv("slack_x_min", slack_len > 0 ? slack_lo : 0.0) + ", " +
+              json_kv("slack_x_max", slack_len > 0 ? slack_hi : 0.0) + ", " +
+              json_kv("max_slip_top", std::fabs(c.slip_top[it])) + ", " +
+              json_kv("max_slip_top_x", c.x0[it * DIM]) + ", " +
+              json_kv("max_slip_bottom", std::fabs(c.slip_bot[ib])) + ", " +
+              json_kv("max_slip_bottom_x", c.x0[ib * DIM]) + ", " +
+              json_kv("membrane_settlement", rows_.back().membrane_settlement) + ", " +
+              json_kv("differential_settlement", rows_.back().differential) + "}";
+      verdict_ = std::string("membrane ") + c.name + ": peak strain " +
+                 std::to_string(100 * c.eps[jp]).substr(0, 6) + " % at x = " +
+                 std::to_string(xm).substr(0, 7) + " m, allowable " +
+                 std::to_string(100 * allowable_).substr(0, 5) + " %: " +
+                 (pass ? "PASS" : "EXCEEDED");
+      PetscCall(ComparisonJson(sim, c, json));
+    }
+    PetscFunctionReturn(0);
+  }
+
+  // Closed forms for the same geometry: the void (Giroud with Terzaghi's arching) and the slope
+  // (infinite slope, Koerner-Soong), with the simulated counterparts.
+  PetscErrorCode ComparisonJson(Simulation &sim, const Chain &c, std::string &json) {
+    PetscFunctionBeginUser;
+    const char *sep = ",\n    ";
+    const Membrane &M = mem_.back();
+    // the soil above the membrane: thickness, mean unit weight, friction of the layer on it
+    auto above = [&](double x, double &H, double &gamma) {
+      H = 0;
+      double w = 0;
+      for (size_t k = M.layer; k < layers_.size(); ++k) {
+        const double t = layers_[k].thickness(x, W_);
+        H += t;
+        w += t * sim.mats[layers_[k].mat].gamma;
+      }
+      gamma = w / H;
+    };
+    const MaterialEntry &soil = sim.mats[layers_[M.layer].mat];
+    double phi = 0;
+    if (auto *dp = dynamic_cast<const DruckerPrager *>(soil.model.get())) phi = dp->params().phi_deg;
+    if (!void_w_.empty() && void_eff_ > 0) {
+      double H, gamma;
+      above(void_x_, H, gamma);
+      const double B = void_eff_, J = c.law.J;
+      // simulated: mean pressure on the sheet's top over the void, sag relative to its edges
+      double p = 0, n = 0;
+      auto settle = [&](double X) { // membrane settlement since stage 0 at initial x X
+        int i = 0;
+        while (i + 1 < c.n && c.x0[(i + 1) * DIM] < X) ++i;
+        return chain_ref_.back()[i * DIM + 1] - c.x[i * DIM + 1];
+      };
+      for (int i = 0; i < c.n; ++i)
+        if (std::fabs(c.x0[i * DIM] - void_x_) < 0.5 * B) p += c.p_top[i], n += 1;
+      p = n > 0 ? p / n : 0;
+      const double sag = settle(void_x_) - 0.5 * (settle(void_x_ - B / 2) + settle(void_x_ + B / 2));
+      std::string g = "{" + json_kv("B", B) + ", " + json_kv("H", H) + ", " +
+                      json_kv("gamma", gamma) + ", " + json_kv("J", J) + ", " +
+                      json_kv("pmpm_pressure", p) + ", " + json_kv("pmpm_sag", sag) + ", " +
+                      json_kv("overburden", gamma * H);
+      if (phi > 0) {
+        const double tp = std::tan(phi * kDeg), sp = std::sin(phi * kDeg);
+        const double Ka = (1 - sp) / (1 + sp);
+        g += ", " + json_kv("terzaghi_K1", giroud::terzaghi_pressure(gamma, B, H, tp)) + ", " +
+             json_kv("terzaghi_Ka", giroud::terzaghi_pressure(gamma, B, H, Ka * tp)) + ", " +
+             json_kv("phi", phi);
+      }
+      try {
+        const auto gs = giroud::self_consistent(gamma, B, H, 0.0, c.thickness, J / c.thickness);
+        g += ", " + json_kv("giroud_pressure", gs.pressure) + ", " +
+             json_kv("giroud_strain", gs.strain) + ", " + json_kv("giroud_sag", gs.sag) + ", " +
+             json_kv("giroud_tension", gs.tension);
+      } catch (const std::exception &) {
+      }
+      json += sep + std::string("\"void\": ") + g + "}";
+    }
+    if (slope_len_ > 0) {
+      double H, gamma;
+      const double beta = slope_deg_ * kDeg;
+      const double xm = toe_x_ + 0.5 * slope_len_ * std::cos(beta);
+      above(xm, H, gamma);
+      const double delta = std::atan(c.top.mu), h = H * std::cos(beta); // normal thickness
+      json += sep + std::string("\"slope\": {") + json_kv("beta", slope_deg_) + ", " +
+              json_kv("delta", delta / kDeg) + ", " + json_kv("phi", phi) + ", " +
+              json_kv("h_normal", h) + ", " + json_kv("L", slope_len_) + ", " +
+              json_kv("fs_infinite", veneer::fs_infinite(beta, delta)) + ", " +
+              json_kv("fs_koerner_soong",
+                      phi > 0 ? veneer::fs_koerner_soong(gamma, h, slope_len_, beta, phi * kDeg,
+                                                         delta)
+                              : std::nan("")) +
+              "}";
+    }
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode write_files(Simulation &sim) override {
+    PetscFunctionBeginUser;
+    if (!verdict_.empty() && !sim.set.quiet)
+      PetscCall(PetscPrintf(sim.comm, "%s\n", verdict_.c_str()));
+    PetscFunctionReturn(0);
+  }
+
+private:
+  std::string verdict_;
+};
+
+std::unique_ptr<Scene> make_cover_scene() {
+  return std::make_unique<CoverScene>();
+}
+
+} // namespace pmpm
