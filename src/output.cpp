@@ -150,6 +150,7 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
   PetscCall(WriteField(sim.comm, v, "F", n, DIM * DIM, P.F));
   PetscCall(WriteField(sim.comm, v, "volume", n, 1, P.vol));
   PetscCall(WriteField(sim.comm, v, "volume0", n, 1, P.vol0));
+  PetscCall(WriteField(sim.comm, v, "halfsize", n, DIM, P.lp));
   PetscCall(WriteField(sim.comm, v, "mass", n, 1, P.mass));
   PetscCall(WriteField(sim.comm, v, "eps_p", n, 1, P.eps_p));
   PetscCall(WriteField(sim.comm, v, "colour", n, 1, P.colour));
