@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The main job: install and build if needed, then run the landfill cover of the seed paper under
 # load II and load I on 2 ranks, and plot the membrane's deflection, strain and stress (both loads
-# on one plot) and the deformed shape. Results: output/landfill/ and output/landfill_load1/.
+# on one plot) and the deformed shape; then a field cover with a sinkhole opening under it in
+# stages (options/cover_sinkhole.opts), with its design answers and plots. Results:
+# output/landfill/, output/landfill_load1/, output/cover_sinkhole/.
 #
 # With arguments, runs one scene instead: scripts/run.sh OPTIONS_FILE [pmpm options...]
 set -euo pipefail
@@ -19,6 +21,8 @@ if (($#)); then
   out=$(/usr/bin/python3 -c 'import sys; a = sys.argv[1:]; print(a[a.index("-output_dir") + 1] if "-output_dir" in a else "")' "$@")
   [ -n "$out" ] || out=output/$(sed -n 's/^-scene *//p' "$opts" | head -1)
   if compgen -G "$out/chain_*.csv" > /dev/null; then /usr/bin/python3 scripts/plot_chain.py "$out"; fi
+  # a staged cover: the stage history and the deformed cover coloured by plastic strain
+  if [ -f "$out/stages.csv" ]; then /usr/bin/python3 scripts/plot_cover.py "$out"; fi
   exit
 fi
 run -options_file options/landfill.opts -output_dir output/landfill
@@ -35,3 +39,7 @@ for name in ("landfill", "landfill_load1"):
           f"peak membrane strain {r['peak_axial_strain']*100:.2f} % at X = {r['peak_axial_strain_x']*1e3:.1f} mm")
 print("plots: output/landfill/*.png (ParaView: output/landfill/particles.xmf)")
 PY
+run -options_file options/cover_sinkhole.opts -output_dir output/cover_sinkhole
+/usr/bin/python3 scripts/plot_chain.py output/cover_sinkhole
+/usr/bin/python3 scripts/plot_cover.py output/cover_sinkhole
+echo "cover_sinkhole: output/cover_sinkhole/stages.csv, *.png (ParaView: series/particles_series.xmf)"

@@ -285,7 +285,10 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &re
     break;
   }
 
-  // 7. Reductions: unbalanced force, loads, energy, wave speed, escapes (two allreduces).
+  // 7. Reductions: unbalanced force, loads, energy, wave speed, escapes (two allreduces). This
+  //    rank's largest unbalanced force and where it is are kept for a stage that stalls.
+  sim.run.local_unbalanced = rep.grid.max_unbalanced;
+  for (int d = 0; d < DIM; ++d) sim.run.local_unbalanced_at[d] = rep.grid.max_at[d];
   double mx[4] = {rep.grid.max_unbalanced, rep.g2p.max_c, rep.g2p.max_v,
                   static_cast<double>(rep.g2p.bad > 0 ? sim.rank + 1 : 0)};
   double sm[8] = {rep.grid.sum_ext,        rep.grid.n_ext,

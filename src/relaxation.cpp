@@ -290,11 +290,26 @@ PetscErrorCode Relax(Simulation &sim) {
                             "%sconverged: unbalanced-force ratio %.3e <= %g after %" PetscInt_FMT
                             " steps (%.2f s)\n",
                             stage_tag, run.ratio, s.tol, run.stage_step, run.stage_seconds));
-    else
+    else {
+      // where the residual sits: the node of the largest unbalanced force (one reduction)
+      struct {
+        double v;
+        int rank;
+      } loc = {run.local_unbalanced, sim.rank}, glob;
+      double at[DIM] = {run.local_unbalanced_at[0], run.local_unbalanced_at[1]};
+      PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
+      PetscCallMPI(MPI_Bcast(at, DIM, MPI_DOUBLE, glob.rank, sim.comm));
       PetscCall(PetscPrintf(sim.comm,
                             "%sNOT converged: step cap %" PetscInt_FMT " reached with "
-                            "unbalanced-force ratio %.3e > %g (%.2f s)\n",
-                            stage_tag, s.max_steps, run.ratio, s.tol, run.stage_seconds));
+                            "unbalanced-force ratio %.3e > %g (%.2f s); the largest unbalanced "
+                            "force (%.3g N/m) is at the node (%g, %g) m. Raise -max_steps or "
+                            "-tol%s\n",
+                            stage_tag, s.max_steps, run.ratio, s.tol, run.stage_seconds, glob.v,
+                            at[0], at[1],
+                            sim.chains.empty() ? ""
+                                               : "; at a membrane's node, the contact may be "
+                                                 "chattering (README, Known limitations)"));
+    }
   }
   // The paper's interface keeps one normal velocity for both bodies, so it also holds them
   // together where they pull apart, and its friction counts compression only. That is sound

@@ -189,7 +189,11 @@ void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) 
       double f2 = 0.0; // |f_int + f_ext|^2 over the free dofs
       for (int d = 0; d < DIM; ++d)
         if (!held[d]) f2 += ftot[d] * ftot[d];
-      st.max_unbalanced = std::fmax(st.max_unbalanced, std::sqrt(f2));
+      if (std::sqrt(f2) > st.max_unbalanced) {
+        st.max_unbalanced = std::sqrt(f2);
+        st.max_at[0] = G.origin[0] + i * G.h;
+        st.max_at[1] = G.origin[1] + j * G.h;
+      }
       // each body's own momentum balance
       for (int b = 0; b < G.nbody; ++b) {
         double *node = node0 + b * ND;

@@ -44,6 +44,23 @@ cases = [
     ("chain and layers together", ["-options_file", "options/landfill.opts",
                                    "-landfill_membrane_chain", "-landfill_membrane_layers", "1"],
      "-landfill_membrane_chain"),
+    ("cover membrane under an unknown layer", ["-options_file", "options/cover_sinkhole.opts",
+                                               "-cover_membrane_hdpe_under", "gravel"],
+     "-cover_membrane_hdpe_under"),
+    ("cover void widths decreasing", ["-options_file", "options/cover_sinkhole.opts",
+                                      "-cover_void_widths", "2,1"], "-cover_void_widths"),
+    ("cover shrinkage above 0.6", ["-options_file", "options/cover_degradation.opts",
+                                   "-cover_shrink_total", "0.9"], "-cover_shrink_total"),
+    ("cover layer without thickness", ["-options_file", "options/cover_sinkhole.opts",
+                                       "-cover_layer_clay_thickness", "0"],
+     "-cover_layer_clay_thickness"),
+    ("cover strain gauge below a cell", ["-options_file", "options/cover_sinkhole.opts",
+                                         "-cover_strain_gauge", "0.1"], "-cover_strain_gauge"),
+    ("cover shrinkage of a hyperelastic waste", ["-options_file", "options/cover_degradation.opts",
+                                                 "-mat_waste_model", "neo_hookean"],
+     "-cover_shrink_total"),
+    ("cover surface not spanning the width", ["-options_file", "options/cover_slope.opts",
+                                              "-cover_surface", "0,5,50,8"], "-cover_surface"),
 ]
 for what, args, needle in cases:
     d = f"{out}/{what.replace(' ', '_')}"

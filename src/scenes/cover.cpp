@@ -221,7 +221,7 @@ class CoverScene final : public Scene {
                               nullptr, shrink_stages_, &shrink_stages_, nullptr));
     PetscCall(PetscOptionsInt("-shrink_steps",
                               "Steps over which each stage's shrinkage is applied (0: auto, "
-                              "4 wave transits of the model's height)",
+                              "25 wave transits of the model's height)",
                               nullptr, shrink_steps_, &shrink_steps_, nullptr));
     PetscCall(PetscOptionsEnum("-shrink_mode",
                                "Shrinkage eigenstrain: vertical (e*_yy = -e_v) or isotropic "
