@@ -639,12 +639,9 @@ public:
 
   PetscErrorCode end_stage(Simulation &sim, PetscInt k) override {
     PetscFunctionBeginUser;
-    if (k == 0) { // lay the membranes unstrained on the settled ground; displacements from here
+    if (k == 0) { // displacements from here on
       chain_ref_.clear();
-      for (Chain &c : sim.chains) {
-        chain_lay(c);
-        chain_ref_.push_back(c.x);
-      }
+      for (Chain &c : sim.chains) chain_ref_.push_back(c.x);
     }
     StageRow r;
     r.stage = static_cast<int>(k);
@@ -678,6 +675,10 @@ public:
     r.wall = sim.run.stage_seconds;
     r.converged = sim.run.converged;
     rows_.push_back(r);
+    // stage 0 is recorded as it is (a veneer's slip under its own weight, the strain the cover's
+    // weight gave); then the membranes are laid unstrained on the settled ground
+    if (k == 0)
+      for (Chain &c : sim.chains) chain_lay(c);
     // the record so far, complete after every stage; a frame for ParaView
     PetscCall(OutputPrepareDirectory(sim));
     if (sim.rank == 0) {
