@@ -11,6 +11,25 @@ static const char help[] =
 
 using namespace pmpm;
 
+// Every option has been read by the end of setup: one that was not is misspelled, or meant for
+// another scene or material model, and would silently leave its default in place (on a cluster,
+// a wasted allocation). Name it and stop before the run.
+static PetscErrorCode CheckUnusedOptions(MPI_Comm comm, const std::string &scene) {
+  PetscInt n = 0;
+  char **names = nullptr, **values = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
+  std::string list;
+  for (PetscInt k = 0; k < n; ++k) list += std::string(k ? ", -" : "-") + names[k];
+  const PetscInt unused = n;
+  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
+  PetscCheck(unused == 0, comm, PETSC_ERR_USER_INPUT,
+             "option%s %s not used by scene %s (misspelled, or meant for another scene or "
+             "material model): -help lists the options this run reads",
+             unused > 1 ? "s" : "", list.c_str(), scene.c_str());
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode Run() {
   Simulation sim;
   PetscLogStage st_setup, st_relax, st_output;
@@ -29,6 +48,7 @@ static PetscErrorCode Run() {
     PetscCall(SimulationDestroy(sim));
     PetscFunctionReturn(0);
   }
+  PetscCall(CheckUnusedOptions(sim.comm, sim.set.scene));
 
   PetscCall(PetscLogStagePush(st_relax));
   PetscCall(RunStages(sim));
@@ -78,12 +98,28 @@ int main(int argc, char **argv) {
     PetscErrorMessage(ierr, &text, &specific);
     MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
     MPI_Comm_size(PETSC_COMM_WORLD, &size);
-    std::fprintf(stderr, "pmpm: error%s: %s\n",
-                 size > 1 ? (" on rank " + std::to_string(rank)).c_str() : "",
-                 specific && specific[0] ? specific : (text ? text : "unknown error"));
+    const char *msg = specific && specific[0] ? specific : (text ? text : "unknown error");
+    // An error every rank met (bad input, a collective check) is printed once, by rank 0, and
+    // the run ends cleanly. One that only some ranks met cannot wait for the others (they may be
+    // blocked in a collective): those ranks print it with their number and abort the job.
+    bool all = size == 1;
+    if (size > 1) {
+      MPI_Request req;
+      int done = 0;
+      MPI_Ibarrier(PETSC_COMM_WORLD, &req);
+      const double t0 = MPI_Wtime();
+      while (!done && MPI_Wtime() - t0 < 2.0) MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+      all = done != 0;
+    }
+    if (all) {
+      if (rank == 0) std::fprintf(stderr, "pmpm: error: %s\n", msg);
+      std::fflush(stderr);
+      PetscFinalize();
+      return 1;
+    }
+    std::fprintf(stderr, "pmpm: error on rank %d: %s\n", rank, msg);
     std::fflush(stderr);
-    if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1); // the other ranks may be waiting in a collective
-    PetscFinalize();
+    MPI_Abort(PETSC_COMM_WORLD, 1);
     return 1;
   }
   PetscCall(PetscFinalize());

@@ -1,4 +1,6 @@
-"""Bad input: each case must exit non-zero, name the offending option or file, and leave no output.
+"""Bad input: each case must exit non-zero, name the offending option or file, and leave no output;
+a misspelled option or one no part of the run reads is bad input too; on 2 ranks an error all ranks
+meet is one line.
 
 usage: test_bad_input.py EXE OUTDIR
 """
@@ -61,6 +63,10 @@ cases = [
      "-cover_shrink_total"),
     ("cover surface not spanning the width", ["-options_file", "options/cover_slope.opts",
                                               "-cover_surface", "0,5,50,8"], "-cover_surface"),
+    ("misspelled option", ["-options_file", "options/bar.opts", "-cell_sise", "0.001"],
+     "-cell_sise"),
+    ("an option of another material model", ["-options_file", "options/bar.opts",
+                                             "-mat_bar_cohesion", "5e3"], "-mat_bar_cohesion"),
 ]
 for what, args, needle in cases:
     d = f"{out}/{what.replace(' ', '_')}"
@@ -69,4 +75,13 @@ for what, args, needle in cases:
     c.check(f"{what}: non-zero exit", code != 0, f"(exit {code})")
     c.check(f"{what}: message names {needle}", bool(msg), f"[{msg.strip()[:110]}]")
     c.check(f"{what}: no output written", not os.path.exists(d))
+
+# On 2 ranks an error every rank meets is printed once (rank 0), without a rank number.
+d = f"{out}/two_ranks"
+code, text = run(exe, 2, ["-options_file", "options/bar.opts", "-mat_bar_E", "-1"], d,
+                 expect_ok=False)
+lines = [l for l in text.splitlines() if l.startswith("pmpm: error")]
+c.check("2 ranks: non-zero exit", code != 0, f"(exit {code})")
+c.check("2 ranks: one error line", len(lines) == 1 and "-mat_bar_E" in lines[0], f"({lines})")
+c.check("2 ranks: no output written", not os.path.exists(d))
 c.done()

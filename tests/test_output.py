@@ -21,7 +21,8 @@ for key in ("scene", "ranks", "particles", "cells", "h", "steps", "wall_seconds"
 n = s["particles"]
 with h5py.File(f"{d}/particles.h5", "r") as f:
     shapes = {"position": (n, 2), "position0": (n, 2), "displacement": (n, 2), "velocity": (n, 2),
-              "stress": (n, 4), "F": (n, 4), "volume": (n,), "volume0": (n,), "mass": (n,),
+              "stress": (n, 4), "F": (n, 4), "volume": (n,), "volume0": (n,), "halfsize": (n, 2),
+              "mass": (n,),
               "eps_p": (n,), "colour": (n,), "material": (n,), "id": (n,)}
     for name, shape in shapes.items():
         ok = f"particles/{name}" in f and f[f"particles/{name}"].shape == shape
