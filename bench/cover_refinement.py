@@ -34,8 +34,8 @@ MARK_BEGIN, MARK_END = "<!-- cover_refinement.py begin -->", "<!-- cover_refinem
 # example: (options file, cell sizes coarse to fine, gauge length m)
 EXAMPLES = {
     "slope": ("options/cover_slope.opts", [1.0, 0.5, 0.25], 1.0),
-    "degradation": ("options/cover_degradation.opts", [1.0, 0.5, 0.25], 1.0),
     "sinkhole": ("options/cover_sinkhole.opts", [0.5, 0.25, 0.125], 0.5),
+    "degradation": ("options/cover_degradation.opts", [1.0, 0.5, 0.25], 1.0),
 }
 
 

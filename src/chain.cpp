@@ -506,8 +506,18 @@ void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const C
       // to their mass, so the node's momentum keeps every force (dropping the tail forces left
       // an unbalanced force of 150x the mean nodal load in the landfill, which never converged).
       double ptot[DIM] = {0, 0}, pnew[DIM] = {0, 0}, mfull = 0;
+      // A sheet can be a tail too: with a small share of a node and no body on one side of it
+      // there, its share of the point's load has nothing to rest on at this node (the body beneath
+      // reaches the sheet's other row of nodes only: uGIMP blocks keep their size while the waste
+      // compresses), contact separates it from the body above, and the point crept down at a rate
+      // that falls with that share: the sinkhole's geostatic stage stalled at a ratio of 5e-4 for
+      // 20,000 steps. Moving with the bodies at the node, it converges in 1,084 steps to 1e-4.
+      auto is_tail = [&](int q) {
+        if (ids[q] % 2 == 0) return m[q] < prm.tail_share * msum;
+        return (q == 0 || q == k - 1) && m[q] < prm.chain_tail_share * msum;
+      };
       for (int q = 0; q < k; ++q) {
-        const bool tail = ids[q] % 2 == 0 && m[q] < prm.tail_share * msum;
+        const bool tail = is_tail(q);
         for (int d = 0; d < DIM; ++d) {
           ptot[d] += m[q] * v[q * DIM + d];
           if (tail) v[q * DIM + d] = vold[q * DIM + d] + dt * acm[d];
@@ -516,7 +526,7 @@ void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const C
         if (!tail) mfull += m[q];
       }
       for (int q = 0; q < k; ++q)
-        if (!(ids[q] % 2 == 0 && m[q] < prm.tail_share * msum))
+        if (!is_tail(q))
           for (int d = 0; d < DIM; ++d) v[q * DIM + d] += (ptot[d] - pnew[d]) / mfull;
       StackFace faces[MAXB];
       StackFaceResult res[MAXB];

@@ -387,7 +387,15 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
                              "materials (the load is unchanged); default: on under "
                              "-inertia_scaling wave_speed",
                              nullptr, chain_scaling, &chain_scaling, nullptr));
+  PetscCall(PetscOptionsReal("-chain_tail_share",
+                             "A sheet with less than this share of a node's mass and no body on "
+                             "one side of it there moves with the bodies at the node, 0 <= s < 0.5",
+                             nullptr, sim.contact.chain_tail_share, &sim.contact.chain_tail_share,
+                             nullptr));
   PetscOptionsEnd();
+  PetscCheck(sim.contact.chain_tail_share >= 0 && sim.contact.chain_tail_share < 0.5, sim.comm,
+             PETSC_ERR_ARG_OUTOFRANGE, "-chain_tail_share must be in [0, 0.5) (got %g)",
+             sim.contact.chain_tail_share);
   PetscCheck(sim.chain_spacing >= 0.05 && sim.chain_spacing <= 1, sim.comm,
              PETSC_ERR_ARG_OUTOFRANGE, "-chain_spacing must be in [0.05, 1] cells (got %g)",
              sim.chain_spacing);
