@@ -699,9 +699,11 @@ public:
       std::fclose(f);
     }
     PetscCall(OutputCommit(sim, "stages.csv"));
-    char name[64];
-    snprintf(name, sizeof(name), "series/stage_%03d.h5", (int)k);
-    PetscCall(OutputParticles(sim, name));
+    if (sim.nstages > 0) { // one frame per stage (stage 0 alone is particles.h5)
+      char name[64];
+      snprintf(name, sizeof(name), "series/stage_%03d.h5", (int)k);
+      PetscCall(OutputParticles(sim, name));
+    }
     if (!sim.set.quiet)
       PetscCall(PetscPrintf(sim.comm,
                             "stage %d (%s): surface settlement %.4g m, membrane settlement %.4g m "
