@@ -224,8 +224,8 @@ void chain_update_tension(Chain &c) {
 
 void chain_lay(Chain &c) {
   for (int k = 0; k + 1 < c.n; ++k)
-    c.l0[k] = std::hypot(c.x[(k + 1) * DIM] - c.x[k * DIM],
-                         c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1]);
+    c.l0[k] =
+        std::hypot(c.x[(k + 1) * DIM] - c.x[k * DIM], c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1]);
   std::fill(c.eps_p.begin(), c.eps_p.end(), 0.0);
   std::fill(c.alpha.begin(), c.alpha.end(), 0.0);
   std::fill(c.slip_top.begin(), c.slip_top.end(), 0.0);

@@ -26,15 +26,16 @@ PetscErrorCode ZeroParticleVelocities(Simulation &sim) {
 // plasticity, friction and kinetic resets only remove energy, so at every step of a stage
 //   E_kin + U_el <= E_kin(0) + U_el(0) + W_ext,   W_ext = sum over steps of dt sum_p f_p . v_p,
 // with f_p the particle's load (ramped weight and traction) plus the work of any imposed
-// eigenstrain (degradation.hpp), and U_el the elastic energy of the current stresses (small-strain compliance of each material). A step above the stable limit
-// creates energy: the unstable mode grows by a constant factor per step (1.5-2x measured on the
-// column at -cfl 0.65-0.75) and passes the budget a few steps after it becomes visible, whereas
-// with local damping the step size then shrinks with the speeds and the run can "converge" to a
-// tangled state (column -cfl 0.75: stress error 31x). The factor 2 covers the small-strain
-// estimate of U_el at large strain (30 % over at 30 % compression for neo-Hookean) and the
-// half-step offset of v and x in undamped runs; the floor (the elastic energy of a strain of
-// about 1e-7) keeps round-off in unloaded bodies from tripping it. Checked every kEnergyEvery
-// steps (one allreduce of two numbers); the power is summed locally every step.
+// eigenstrain (degradation.hpp), and U_el the elastic energy of the current stresses (small-strain
+// compliance of each material). A step above the stable limit creates energy: the unstable mode
+// grows by a constant factor per step (1.5-2x measured on the column at -cfl 0.65-0.75) and passes
+// the budget a few steps after it becomes visible, whereas with local damping the step size then
+// shrinks with the speeds and the run can "converge" to a tangled state (column -cfl 0.75: stress
+// error 31x). The factor 2 covers the small-strain estimate of U_el at large strain (30 % over at
+// 30 % compression for neo-Hookean) and the half-step offset of v and x in undamped runs; the floor
+// (the elastic energy of a strain of about 1e-7) keeps round-off in unloaded bodies from tripping
+// it. Checked every kEnergyEvery steps (one allreduce of two numbers); the power is summed locally
+// every step.
 constexpr PetscInt kEnergyEvery = 5;
 constexpr double kEnergyFactor = 2.0;
 // The paper interface's tension warning: the share of tensile normal impulse above which it

@@ -19,7 +19,8 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
   PetscCall(PetscOptionsString(
-      "-scene", "Scene: bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover",
+      "-scene",
+      "Scene: bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover",
       nullptr, scene, scene, sizeof(scene), &set));
   PetscCheck(set, comm, PETSC_ERR_USER_INPUT,
              "No scene given: pass -options_file options/<scene>.opts or -scene NAME "

@@ -27,9 +27,9 @@ PetscErrorCode RunStages(Simulation &sim) {
       // until one has run
       if (k > 0) later += sim.run.stage_seconds;
       const double per = k > 0 ? later / double(k) : sim.run.stage_seconds;
-      PetscCall(PetscPrintf(sim.comm,
-                            "stage %d/%d done (%.1f s); %d to go, ETA about %.0f s\n", (int)k,
-                            (int)n, sim.run.stage_seconds, (int)(n - k), per * double(n - k)));
+      PetscCall(PetscPrintf(sim.comm, "stage %d/%d done (%.1f s); %d to go, ETA about %.0f s\n",
+                            (int)k, (int)n, sim.run.stage_seconds, (int)(n - k),
+                            per * double(n - k)));
     }
   }
   sim.run.converged = all;

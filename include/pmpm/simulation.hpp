@@ -91,8 +91,8 @@ struct RunState {
   double wall_seconds = 0;  // all stages
   double stage_seconds = 0; // the current stage
   PetscInt migrations = 0;
-  double local_unbalanced = 0;                // this rank's largest nodal unbalanced force
-  double local_unbalanced_at[DIM] = {0, 0};   // and its node
+  double local_unbalanced = 0;              // this rank's largest nodal unbalanced force
+  double local_unbalanced_at[DIM] = {0, 0}; // and its node
   PetscInt kinetic_resets = 0;
 };
 

@@ -52,11 +52,11 @@ struct GridUpdateParams {
 };
 
 struct GridStats {
-  double max_unbalanced = 0; // max over nodes with mass of |f_int + f_ext| (free dofs only)
+  double max_unbalanced = 0;   // max over nodes with mass of |f_int + f_ext| (free dofs only)
   double max_at[DIM] = {0, 0}; // the node where it is (this rank's)
-  double sum_ext = 0;        // sum of |f_ext| over nodes with a load
-  double n_ext = 0;          // number of those nodes
-  double kinetic = 0;        // nodal kinetic energy 1/2 m v^2 after the update
+  double sum_ext = 0;          // sum of |f_ext| over nodes with a load
+  double n_ext = 0;            // number of those nodes
+  double kinetic = 0;          // nodal kinetic energy 1/2 m v^2 after the update
 };
 
 // On the owned nodes of the global vector: v = p/m, a = (f - alpha |f| sign(v)) / m, v += dt a,

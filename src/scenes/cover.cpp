@@ -43,7 +43,7 @@ struct Layer { // bottom-up in Layer order inside the scene
 
 struct Membrane {
   std::string name, material, under; // the chain lies at the base of layer `under`
-  int layer = 0;                      // index of `under` in the bottom-up list
+  int layer = 0;                     // index of `under` in the bottom-up list
   double thickness = 0;
 };
 
@@ -75,15 +75,15 @@ double max_principal_strain(const double *F) {
 // the one-cell mean is 0.9 %): a gauge of at least one cell reads the strain the grid resolves.
 struct SheetPeak {
   double strain = 0, strain_x = 0, tension = 0, tension_x = 0; // gauge means
-  double strain_segment = 0;                                    // the largest single segment's
+  double strain_segment = 0;                                   // the largest single segment's
 };
 SheetPeak sheet_peak(const Chain &c, double gauge) {
   SheetPeak pk;
   const int ns = c.n - 1;
   std::vector<double> s0(c.n, 0.0), s(c.n, 0.0), tl(c.n, 0.0); // cumulative laid, current, T l0
   for (int j = 0; j < ns; ++j) {
-    const double l = std::hypot(c.x[(j + 1) * DIM] - c.x[j * DIM],
-                                c.x[(j + 1) * DIM + 1] - c.x[j * DIM + 1]);
+    const double l =
+        std::hypot(c.x[(j + 1) * DIM] - c.x[j * DIM], c.x[(j + 1) * DIM + 1] - c.x[j * DIM + 1]);
     s0[j + 1] = s0[j] + c.l0[j];
     s[j + 1] = s[j] + l;
     tl[j + 1] = tl[j] + c.T[j] * c.l0[j];
@@ -116,11 +116,11 @@ void TakeNames(char **names, PetscInt n, std::vector<std::string> &out) {
 
 class CoverScene final : public Scene {
   // geometry (m)
-  double W_ = 40, Hw_ = 10, grade_ = 0;                    // width, waste height, deck grade (%)
-  double slope_deg_ = 0, slope_len_ = 0, toe_x_ = 0;       // side slope
-  std::vector<double> surf_;                               // waste surface polyline x,y,...
-  std::vector<Layer> layers_;                              // bottom-up
-  std::vector<Membrane> mem_;                              // bottom-up
+  double W_ = 40, Hw_ = 10, grade_ = 0;              // width, waste height, deck grade (%)
+  double slope_deg_ = 0, slope_len_ = 0, toe_x_ = 0; // side slope
+  std::vector<double> surf_;                         // waste surface polyline x,y,...
+  std::vector<Layer> layers_;                        // bottom-up
+  std::vector<Membrane> mem_;                        // bottom-up
   std::string waste_mat_ = "waste";
   // stages
   double shrink_total_ = 0;
@@ -132,8 +132,8 @@ class CoverScene final : public Scene {
   PetscBool geostatic_paper_ = PETSC_TRUE;
   std::vector<FaceType> face_types_; // the chains' own face types (top, bottom per chain)
   // derived
-  double dxp_ = 0;           // particle column spacing h / ppc
-  PetscInt ncol_ = 0, R_ = 0; // columns; pid stride per column
+  double dxp_ = 0;                    // particle column spacing h / ppc
+  PetscInt ncol_ = 0, R_ = 0;         // columns; pid stride per column
   std::vector<PetscInt> surface_pid_; // the top particle of each column (sorted)
   std::vector<char> cover_mat_;       // per material: a cover layer's
   double cum_shrink_ = 0, void_now_ = 0, void_eff_ = 0;
@@ -182,7 +182,8 @@ class CoverScene final : public Scene {
     std::vector<double> surf(2 * kMaxList), vw(kMaxList);
     double zx[2] = {0, 0}, gr[2] = {1, 1};
     PetscInt nz = 2, ng = 2, nl = kMaxList, nm = kMaxList;
-    PetscBool vw_set = PETSC_FALSE, zx_set = PETSC_FALSE, gr_set = PETSC_FALSE, l_set = PETSC_FALSE, m_set = PETSC_FALSE;
+    PetscBool vw_set = PETSC_FALSE, zx_set = PETSC_FALSE, gr_set = PETSC_FALSE, l_set = PETSC_FALSE,
+              m_set = PETSC_FALSE;
     char *lnames[kMaxList], *mnames[kMaxList], wbuf[64];
     PetscFunctionBeginUser;
     PetscCall(PetscStrncpy(wbuf, waste_mat_.c_str(), sizeof(wbuf)));
@@ -206,8 +207,8 @@ class CoverScene final : public Scene {
                                     "Waste surface as a polyline x0,y0,x1,y1,... (m, x "
                                     "increasing from 0 to W; overrides the deck and slope)",
                                     nullptr, surf.data(), &nsurf, &surf_set));
-    PetscCall(PetscOptionsStringArray("-layers", "Cover layers from the top down (names)",
-                                      nullptr, lnames, &nl, &l_set));
+    PetscCall(PetscOptionsStringArray("-layers", "Cover layers from the top down (names)", nullptr,
+                                      lnames, &nl, &l_set));
     PetscCall(PetscOptionsString("-waste_material", "Material of the waste (-mat_<name>_*)",
                                  nullptr, wbuf, wbuf, sizeof(wbuf), nullptr));
     PetscCall(PetscOptionsStringArray(
@@ -238,13 +239,14 @@ class CoverScene final : public Scene {
                                     "Shrinkage factors at the waste base and top, bottom,top "
                                     "(linear with height; 1,1: uniform)",
                                     nullptr, gr, &ng, &gr_set));
-    PetscCall(PetscOptionsReal("-void_x", "Void centre x (m)", nullptr, void_x_, &void_x_, nullptr));
+    PetscCall(
+        PetscOptionsReal("-void_x", "Void centre x (m)", nullptr, void_x_, &void_x_, nullptr));
     PetscCall(PetscOptionsRealArray("-void_widths",
                                     "Void width at each void stage (m, non-decreasing; none: no "
                                     "void)",
                                     nullptr, vw.data(), &nvoid, &vw_set));
-    PetscCall(PetscOptionsReal("-void_height", "Void height (m)", nullptr, void_h_, &void_h_,
-                               nullptr));
+    PetscCall(
+        PetscOptionsReal("-void_height", "Void height (m)", nullptr, void_h_, &void_h_, nullptr));
     PetscCall(PetscOptionsReal("-void_depth",
                                "Depth of the void's top below the waste surface (m; 0: it "
                                "touches the cover)",
@@ -279,7 +281,8 @@ class CoverScene final : public Scene {
       sim.shrink.x_lo = zx[0];
       sim.shrink.x_hi = zx[1];
     }
-    PetscCheck(!gr_set || ng == 2, sim.comm, PETSC_ERR_USER_INPUT, "-cover_shrink_grade needs bottom,top");
+    PetscCheck(!gr_set || ng == 2, sim.comm, PETSC_ERR_USER_INPUT,
+               "-cover_shrink_grade needs bottom,top");
     sim.shrink.grade_bottom = gr[0];
     sim.shrink.grade_top = gr[1];
 
@@ -295,8 +298,8 @@ class CoverScene final : public Scene {
       double t = 0, te = -1;
       const std::string pre = "cover_layer_" + L.name + "_";
       PetscOptionsBegin(sim.comm, pre.c_str(), ("Cover layer " + L.name).c_str(), nullptr);
-      PetscCall(PetscOptionsReal("-thickness", "Vertical thickness (m), > 0", nullptr, t, &t,
-                                 nullptr));
+      PetscCall(
+          PetscOptionsReal("-thickness", "Vertical thickness (m), > 0", nullptr, t, &t, nullptr));
       PetscCall(PetscOptionsReal("-thickness_end",
                                  "Thickness at x = W (m; default: -thickness, uniform)", nullptr,
                                  te, &te, nullptr));
@@ -685,9 +688,10 @@ public:
       const std::string path = sim.set.output_dir + "/stages.csv";
       FILE *f = std::fopen((path + ".tmp").c_str(), "w");
       PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
-      std::fprintf(f, "stage,kind,shrinkage,void_width,surface_settlement,membrane_settlement,"
-                      "differential_settlement,peak_strain,peak_strain_x,peak_tension,max_slip,"
-                      "cover_max_eps_p,void_pressure,void_sag,steps,ratio,converged,wall_seconds\n");
+      std::fprintf(f,
+                   "stage,kind,shrinkage,void_width,surface_settlement,membrane_settlement,"
+                   "differential_settlement,peak_strain,peak_strain_x,peak_tension,max_slip,"
+                   "cover_max_eps_p,void_pressure,void_sag,steps,ratio,converged,wall_seconds\n");
       for (const StageRow &q : rows_)
         std::fprintf(f,
                      "%d,%s,%.6g,%.6g,%.8e,%.8e,%.8e,%.8e,%.6g,%.8e,%.8e,%.8e,%.8e,%.8e,%d,%.3e,%d,"
@@ -727,8 +731,8 @@ public:
       if (k > 0) layers += ", ";
     }
     layers += "}";
-    json = json_kv("stages", double(rows_.size() - 1)) + sep +
-           json_kv("cover_max_eps_p", ep) + sep + "\"layers\": " + layers;
+    json = json_kv("stages", double(rows_.size() - 1)) + sep + json_kv("cover_max_eps_p", ep) +
+           sep + "\"layers\": " + layers;
     json += sep + json_kv("surface_settlement", rows_.back().surface_settlement);
     if (!sim.chains.empty()) {
       const Chain &c = sim.chains.back();
@@ -750,11 +754,10 @@ public:
               json_kv("peak_strain", pk.strain) + ", " + json_kv("peak_strain_x", pk.strain_x) +
               ", " + json_kv("strain_gauge", gauge_) + ", " +
               json_kv("peak_strain_segment", pk.strain_segment) + ", " +
-              json_kv("peak_tension", pk.tension) + ", " +
-              json_kv("peak_tension_x", pk.tension_x) + ", " +
-              json_kv("allowable_strain", allowable_) + ", \"verdict\": \"" +
-              (pass ? "PASS" : "EXCEEDED") + "\", " + json_kv("slack_length", slack_len) +
-              ", " + json_kv("slack_x_min", slack_len > 0 ? slack_lo : 0.0) + ", " +
+              json_kv("peak_tension", pk.tension) + ", " + json_kv("peak_tension_x", pk.tension_x) +
+              ", " + json_kv("allowable_strain", allowable_) + ", \"verdict\": \"" +
+              (pass ? "PASS" : "EXCEEDED") + "\", " + json_kv("slack_length", slack_len) + ", " +
+              json_kv("slack_x_min", slack_len > 0 ? slack_lo : 0.0) + ", " +
               json_kv("slack_x_max", slack_len > 0 ? slack_hi : 0.0) + ", " +
               json_kv("max_slip_top", std::fabs(c.slip_top[it])) + ", " +
               json_kv("max_slip_top_x", c.x0[it * DIM]) + ", " +
@@ -766,8 +769,8 @@ public:
       snprintf(line, sizeof(line),
                "membrane %s: peak strain %.3f %% at x = %.2f m (over a %.3g m gauge), tension "
                "%.4g kN/m at x = %.2f m; allowable strain %.3g %%: %s",
-               c.name.c_str(), 100 * pk.strain, pk.strain_x, gauge_, pk.tension / 1e3,
-               pk.tension_x, 100 * allowable_, pass ? "PASS" : "EXCEEDED");
+               c.name.c_str(), 100 * pk.strain, pk.strain_x, gauge_, pk.tension / 1e3, pk.tension_x,
+               100 * allowable_, pass ? "PASS" : "EXCEEDED");
       verdict_ = line;
       PetscCall(ComparisonJson(sim, c, json));
     }
@@ -827,9 +830,9 @@ public:
         const double tp = std::tan(phi * kDeg), sp = std::sin(phi * kDeg);
         const double Ka = (1 - sp) / (1 + sp);
         // the bracket with the cohesion of the layer on the sheet (Terzaghi's c term)
-        g += ", " + json_kv("terzaghi_K1", giroud::terzaghi_pressure(gamma, B, H, tp, coh)) +
-             ", " + json_kv("terzaghi_Ka", giroud::terzaghi_pressure(gamma, B, H, Ka * tp, coh)) +
-             ", " + json_kv("phi", phi) + ", " + json_kv("cohesion", coh);
+        g += ", " + json_kv("terzaghi_K1", giroud::terzaghi_pressure(gamma, B, H, tp, coh)) + ", " +
+             json_kv("terzaghi_Ka", giroud::terzaghi_pressure(gamma, B, H, Ka * tp, coh)) + ", " +
+             json_kv("phi", phi) + ", " + json_kv("cohesion", coh);
       }
       try {
         const auto gs = giroud::self_consistent(gamma, B, H, 0.0, c.thickness, J / c.thickness);
@@ -846,15 +849,15 @@ public:
       const double xm = toe_x_ + 0.5 * slope_len_ * std::cos(beta);
       above(xm, H, gamma);
       const double delta = std::atan(c.top.mu), h = H * std::cos(beta); // normal thickness
-      json += sep + std::string("\"slope\": {") + json_kv("beta", slope_deg_) + ", " +
-              json_kv("delta", delta / kDeg) + ", " + json_kv("phi", phi) + ", " +
-              json_kv("h_normal", h) + ", " + json_kv("L", slope_len_) + ", " +
-              json_kv("fs_infinite", veneer::fs_infinite(beta, delta)) + ", " +
-              json_kv("fs_koerner_soong",
-                      phi > 0 ? veneer::fs_koerner_soong(gamma, h, slope_len_, beta, phi * kDeg,
-                                                         delta)
-                              : std::nan("")) +
-              "}";
+      json +=
+          sep + std::string("\"slope\": {") + json_kv("beta", slope_deg_) + ", " +
+          json_kv("delta", delta / kDeg) + ", " + json_kv("phi", phi) + ", " +
+          json_kv("h_normal", h) + ", " + json_kv("L", slope_len_) + ", " +
+          json_kv("fs_infinite", veneer::fs_infinite(beta, delta)) + ", " +
+          json_kv("fs_koerner_soong",
+                  phi > 0 ? veneer::fs_koerner_soong(gamma, h, slope_len_, beta, phi * kDeg, delta)
+                          : std::nan("")) +
+          "}";
     }
     PetscFunctionReturn(0);
   }
