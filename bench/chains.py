@@ -22,6 +22,8 @@ import subprocess
 import time
 from pathlib import Path
 
+from benchmarks_md import replace_section
+
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "bench" / "out" / "chains"
 BASE_REV = "8d3e17d"  # the last commit with one velocity field per node and no chains
@@ -197,15 +199,7 @@ def main():
     (OUT / "CHAINS.md").write_text(text)
     print(text)
     if not a.quick:
-        bm = ROOT / "BENCHMARKS.md"
-        old = bm.read_text()
-        if MARK_BEGIN in old:
-            old = old[:old.index(MARK_BEGIN)] + text.rstrip("\n") + old[old.index(MARK_END) +
-                                                                       len(MARK_END):]
-        else:
-            old = old.rstrip("\n") + "\n\n" + text
-        bm.write_text(old)
-        print("updated BENCHMARKS.md")
+        replace_section(text, MARK_BEGIN, MARK_END)
 
 
 if __name__ == "__main__":

@@ -24,6 +24,8 @@ import subprocess
 import time
 from pathlib import Path
 
+from benchmarks_md import replace_section
+
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "bench" / "out" / "cover_refinement"
 ENV = dict(os.environ, OMPI_MCA_rmaps_base_oversubscribe="1")
@@ -110,15 +112,7 @@ def main():
     (OUT / "COVER_REFINEMENT.md").write_text(text)
     print(text)
     if not a.quick and not a.only:
-        bm = ROOT / "BENCHMARKS.md"
-        old = bm.read_text()
-        if MARK_BEGIN in old:
-            old = old[:old.index(MARK_BEGIN)] + text.rstrip("\n") + \
-                old[old.index(MARK_END) + len(MARK_END):]
-        else:
-            old = old.rstrip("\n") + "\n\n" + text
-        bm.write_text(old)
-        print("updated BENCHMARKS.md")
+        replace_section(text, MARK_BEGIN, MARK_END)
 
 
 if __name__ == "__main__":

@@ -33,6 +33,10 @@ PetscErrorCode CompareVertical(Simulation &sim, const std::function<double(doubl
 // lambda ln J + mu (J^2 - 1) = sig J for neo-Hookean (Newton from the hypoelastic value).
 double UniaxialStrainJ(const MaterialEntry &m, double sig);
 
+// Every rank's values concatenated on rank 0, in rank order (empty on the other ranks).
+PetscErrorCode GatherToRoot(MPI_Comm comm, const std::vector<double> &mine,
+                            std::vector<double> &all);
+
 // Sum of values over all ranks.
 PetscErrorCode SumAll(MPI_Comm comm, double *v, int n);
 

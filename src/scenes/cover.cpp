@@ -139,7 +139,7 @@ class CoverScene final : public Scene {
   double cum_shrink_ = 0, void_now_ = 0, void_eff_ = 0;
   // references at the end of stage 0 (rank 0 for the surface; chains on every rank)
   std::map<PetscInt, double> surf_ref_;
-  std::vector<std::vector<double>> chain_ref_;
+  std::vector<double> sheet_ref_; // the reported (top-most) sheet's points at stage 0's end
   std::vector<StageRow> rows_;
 
   // waste surface height at x
@@ -600,17 +600,10 @@ public:
         mine.push_back(P.x[p * DIM + 1]);
       }
     PetscCall(ParticlesRestoreView(sim.parts, P));
-    int n = static_cast<int>(mine.size());
-    std::vector<int> counts(sim.size), displs(sim.size, 0);
-    PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, sim.comm));
-    int total = 0;
-    if (sim.rank == 0)
-      for (int r = 0; r < sim.size; ++r) displs[r] = total, total += counts[r];
-    std::vector<double> all(sim.rank == 0 ? total : 0);
-    PetscCallMPI(MPI_Gatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
-                             MPI_DOUBLE, 0, sim.comm));
+    std::vector<double> all;
+    PetscCall(GatherToRoot(sim.comm, mine, all));
     *smax = 0;
-    for (int j = 0; j + 1 < total; j += 2) {
+    for (size_t j = 0; j + 1 < all.size(); j += 2) {
       const PetscInt id = static_cast<PetscInt>(all[j]);
       if (sim.stage == 0)
         surf_ref_[id] = all[j + 1];
@@ -643,8 +636,7 @@ public:
   PetscErrorCode end_stage(Simulation &sim, PetscInt k) override {
     PetscFunctionBeginUser;
     if (k == 0) { // displacements from here on
-      chain_ref_.clear();
-      for (Chain &c : sim.chains) chain_ref_.push_back(c.x);
+      if (!sim.chains.empty()) sheet_ref_ = sim.chains.back().x;
     }
     StageRow r;
     r.stage = static_cast<int>(k);
@@ -657,7 +649,7 @@ public:
     PetscCall(CoverStrains(sim, lt, &r.cover_eps_p));
     if (!sim.chains.empty()) { // the top-most membrane is the one reported per stage
       const Chain &c = sim.chains.back();
-      const std::vector<double> &ref = chain_ref_.back();
+      const std::vector<double> &ref = sheet_ref_;
       double smax = -1e300, smin = 1e300;
       for (int i = 0; i < c.n; ++i) {
         const double s = ref[i * DIM + 1] - c.x[i * DIM + 1];
@@ -788,7 +780,7 @@ public:
     auto settle = [&](double X) {
       int i = 0;
       while (i + 1 < c.n && c.x0[(i + 1) * DIM] < X) ++i;
-      return chain_ref_.back()[i * DIM + 1] - c.x[i * DIM + 1];
+      return sheet_ref_[i * DIM + 1] - c.x[i * DIM + 1];
     };
     *sag = settle(void_x_) - 0.5 * (settle(void_x_ - B / 2) + settle(void_x_ + B / 2));
   }

@@ -100,18 +100,9 @@ class LandfillScene final : public Scene {
       mine.insert(mine.end(), row, row + NF);
     }
     PetscCall(ParticlesRestoreView(sim.parts, P));
-    int n = static_cast<int>(mine.size());
-    std::vector<int> counts(sim.size), displs(sim.size, 0);
-    PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, sim.comm));
-    int total = 0;
-    if (sim.rank == 0)
-      for (int r = 0; r < sim.size; ++r) {
-        displs[r] = total;
-        total += counts[r];
-      }
-    std::vector<double> all(sim.rank == 0 ? total : 0);
-    PetscCallMPI(MPI_Gatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
-                             MPI_DOUBLE, 0, sim.comm));
+    std::vector<double> all;
+    PetscCall(GatherToRoot(sim.comm, mine, all));
+    const int total = static_cast<int>(all.size());
     prof_.clear();
     if (sim.rank != 0) PetscFunctionReturn(0);
     // Columns of membrane particles share x0; the volume-weighted column average is the

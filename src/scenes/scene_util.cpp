@@ -95,6 +95,27 @@ double UniaxialStrainJ(const MaterialEntry &m, double sig) {
   return J;
 }
 
+PetscErrorCode GatherToRoot(MPI_Comm comm, const std::vector<double> &mine,
+                            std::vector<double> &all) {
+  PetscMPIInt rank, size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  int n = static_cast<int>(mine.size());
+  std::vector<int> counts(size), displs(size, 0);
+  PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm));
+  int total = 0;
+  if (rank == 0)
+    for (int r = 0; r < size; ++r) {
+      displs[r] = total;
+      total += counts[r];
+    }
+  all.assign(rank == 0 ? total : 0, 0.0);
+  PetscCallMPI(MPI_Gatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
+                           MPI_DOUBLE, 0, comm));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SumAll(MPI_Comm comm, double *v, int n) {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_SUM, comm));
