@@ -2,6 +2,7 @@
 // transfers.cpp or a material's batch update; PETSc appears only for the ghost exchanges and the
 // migration.
 #include "pmpm/cycle.hpp"
+#include "pmpm/antilock.hpp"
 #include "pmpm/degradation.hpp"
 #include <cmath>
 
@@ -9,7 +10,7 @@ namespace pmpm {
 
 namespace {
 PetscLogEvent ev_p2g, ev_l2g, ev_grid, ev_g2l, ev_g2p, ev_musl, ev_stress, ev_migrate, ev_iface,
-    ev_chain, ev_contact;
+    ev_chain, ev_contact, ev_fbar;
 
 template <class Shape>
 PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport &rep) {
@@ -125,6 +126,8 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   //    volume. USL reads one nodal field in one pass; MUSL first maps the updated particle
   //    momenta back to the grid and takes the kinematics from that remapped velocity.
   PetscCall(PetscLogEventBegin(ev_g2p, 0, 0, 0, 0));
+  if (sim.set.fbar) // the cells the particles start the step in (this rank owns them all)
+    fbar_groups(P, g.origin, g.h, g.cell_lo, g.cell_hi, g.nbody, sim.fbar_group);
   G2PParams pp;
   pp.dt = dt;
   pp.pic = sim.set.pic;
@@ -153,6 +156,12 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     PetscCall(PetscLogEventEnd(ev_musl, 0, 0, 0, 0));
   }
   if (iface) PetscCall(GridRestoreLocal(gb, Gb));
+  // 5'. F-bar: each particle's volume change over the step replaced by its cell's.
+  if (sim.set.fbar) {
+    PetscCall(PetscLogEventBegin(ev_fbar, 0, 0, 0, 0));
+    fbar_apply(P, sim.fbar_group, sim.fbar_sums, sim.dudx.data());
+    PetscCall(PetscLogEventEnd(ev_fbar, 0, 0, 0, 0));
+  }
   // 5a. Chain points: the owner of each point's cell moves it; one allreduce shares them all.
   if (!sim.chains.empty()) {
     PetscCall(PetscLogEventBegin(ev_chain, 0, 0, 0, 0));
@@ -268,6 +277,7 @@ PetscErrorCode LogRegister() {
   PetscCall(PetscLogEventRegister("Interface", cls, &ev_iface));
   PetscCall(PetscLogEventRegister("Chain", cls, &ev_chain));
   PetscCall(PetscLogEventRegister("Contact", cls, &ev_contact));
+  PetscCall(PetscLogEventRegister("FBar", cls, &ev_fbar));
   PetscCall(PetscLogEventRegister("StressUpdate", cls, &ev_stress));
   PetscCall(PetscLogEventRegister("Migrate", cls, &ev_migrate));
   PetscFunctionReturn(0);

@@ -1,7 +1,8 @@
 static const char help[] =
     "pmpm: large-deformation quasi-static geomechanics with the partition Material Point Method.\n"
     "Usage: mpirun -n N pmpm -options_file options/<scene>.opts [-option value ...]\n"
-    "Scenes: bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover.\n"
+    "Scenes: bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover, "
+    "footing.\n"
     "-help lists every option.\n\n";
 
 #include "pmpm/cycle.hpp"

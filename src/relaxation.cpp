@@ -158,6 +158,7 @@ PetscErrorCode Relax(Simulation &sim) {
     snprintf(stage_tag, sizeof(stage_tag), "stage %d/%d  ", (int)sim.stage, (int)sim.nstages);
   run.kinetic_prev = 0;
   run.converged = false;
+  run.stop_stage = false;
   double ke_window = -1; // kinetic energy 100 steps ago, for the growth test
   EnergyBudget budget;
   PetscCall(EnergyBudgetInit(sim, budget));
@@ -275,7 +276,7 @@ PetscErrorCode Relax(Simulation &sim) {
       step_last = k;
       log_ratio_last = lr;
     }
-    if (run.converged) break;
+    if (run.converged || run.stop_stage) break;
     run.max_speed = rep.g2p.max_speed;
     run.dt = s.cfl * s.h / run.max_speed; // stable step from the current wave speeds
   }
@@ -286,6 +287,11 @@ PetscErrorCode Relax(Simulation &sim) {
     if (s.dynamic)
       PetscCall(PetscPrintf(sim.comm, "dynamic run: %" PetscInt_FMT " steps, t = %g s, %.2f s\n",
                             run.step, run.time, run.stage_seconds));
+    else if (run.stop_stage)
+      PetscCall(PetscPrintf(sim.comm,
+                            "%sended by the scene after %" PetscInt_FMT " steps (%.2f s), "
+                            "unbalanced-force ratio %.3e\n",
+                            stage_tag, run.stage_step, run.stage_seconds, run.ratio));
     else if (run.converged)
       PetscCall(PetscPrintf(sim.comm,
                             "%sconverged: unbalanced-force ratio %.3e <= %g after %" PetscInt_FMT

@@ -18,13 +18,14 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscInt ng = DIM;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
-  PetscCall(PetscOptionsString(
-      "-scene",
-      "Scene: bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover",
-      nullptr, scene, scene, sizeof(scene), &set));
-  PetscCheck(set, comm, PETSC_ERR_USER_INPUT,
-             "No scene given: pass -options_file options/<scene>.opts or -scene NAME "
-             "(bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover)");
+  PetscCall(PetscOptionsString("-scene",
+                               "Scene: bar, column, landfill, incline, layers, block, catenary, "
+                               "pullout, trench, cover, footing",
+                               nullptr, scene, scene, sizeof(scene), &set));
+  PetscCheck(
+      set, comm, PETSC_ERR_USER_INPUT,
+      "No scene given: pass -options_file options/<scene>.opts or -scene NAME "
+      "(bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover, footing)");
   s.scene = scene;
   PetscCall(PetscOptionsReal("-cell_size", "Cell size h (m), > 0", nullptr, s.h, &s.h, nullptr));
   PetscCall(PetscOptionsInt("-ppc", "Particles per cell per direction, 1..8", nullptr, s.ppc,
@@ -40,7 +41,7 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   s.output_dir = set ? std::string(dir) : "output/" + s.scene;
   PetscBool quiet = s.quiet ? PETSC_TRUE : PETSC_FALSE,
             dynamic = s.dynamic ? PETSC_TRUE : PETSC_FALSE,
-            musl = s.musl ? PETSC_TRUE : PETSC_FALSE;
+            musl = s.musl ? PETSC_TRUE : PETSC_FALSE, fbar = s.fbar ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscOptionsBool("-quiet", "No progress lines", nullptr, quiet, &quiet, nullptr));
   s.quiet = quiet;
   PetscCall(PetscOptionsInt("-output_every",
@@ -76,6 +77,11 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                              "are re-mapped from the updated particle momenta (false: USL)",
                              nullptr, musl, &musl, nullptr));
   s.musl = musl;
+  PetscCall(PetscOptionsBool("-fbar",
+                             "Anti-locking: each step's volume change averaged over the particles "
+                             "of one body in one cell (F-bar)",
+                             nullptr, fbar, &fbar, nullptr));
+  s.fbar = fbar;
   PetscOptionsEnd();
 
   PetscCheck(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
@@ -305,7 +311,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   sim.scene = make_scene(sim.set.scene);
   PetscCheck(sim.scene, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-scene %s is unknown; allowed: bar, column, landfill, incline, layers, block, "
-             "catenary, pullout, trench, cover",
+             "catenary, pullout, trench, cover, footing",
              sim.set.scene.c_str());
   PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
   PetscCall(PetscOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,

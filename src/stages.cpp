@@ -22,6 +22,7 @@ PetscErrorCode RunStages(Simulation &sim) {
     PetscCall(Relax(sim));
     all = all && sim.run.converged;
     PetscCall(sim.scene->end_stage(sim, k));
+    if (sim.scene->finished()) break;
     if (n > 0 && k < n && !sim.set.quiet) {
       // the later stages each make a change of the same size: their mean time, or stage 0's
       // until one has run

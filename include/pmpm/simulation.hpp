@@ -42,6 +42,7 @@ struct Settings {
   double progress_seconds = 2.0;
   bool dynamic = false; // -dynamic: no damping, no convergence test (run max_steps)
   bool musl = false;    // -musl: recompute nodal velocities from updated particle momenta
+  bool fbar = false;    // -fbar: cell-averaged volume change per step (antilock.hpp)
 };
 
 struct MaterialEntry {
@@ -74,6 +75,8 @@ public:
   virtual PetscInt stages() const { return 0; }
   virtual PetscErrorCode begin_stage(Simulation &, PetscInt) { return 0; }
   virtual PetscErrorCode end_stage(Simulation &, PetscInt) { return 0; }
+  // True when the later stages have no meaning any more (a footing that collapsed).
+  virtual bool finished() const { return false; }
 };
 
 std::unique_ptr<Scene> make_scene(const std::string &name);
@@ -94,6 +97,7 @@ struct RunState {
   double local_unbalanced = 0;              // this rank's largest nodal unbalanced force
   double local_unbalanced_at[DIM] = {0, 0}; // and its node
   PetscInt kinetic_resets = 0;
+  bool stop_stage = false; // set by a scene's monitor: end the stage unconverged (a collapse)
 };
 
 struct Simulation {
@@ -128,6 +132,8 @@ struct Simulation {
   std::vector<std::vector<int>> mat_idx; // particles of each material (this rank)
   std::vector<PetscInt> traction_idx;    // particles carrying a traction
   std::vector<double> dudx;              // L dt per particle (scratch)
+  std::vector<int> fbar_group;           // -fbar: each particle's cell and body (scratch)
+  std::vector<double> fbar_sums;         // -fbar: volumes per group (scratch)
   // Stages (stages.cpp): the current one (0: the initial state under the loads), and what the
   // scene's begin_stage set for it: a shrinkage of the degrading zone applied over stage_ramp
   // steps (degradation.hpp).

@@ -1,0 +1,234 @@
+// A smooth strip footing on weightless soil (REFERENCE.md 2.6), loaded in pressure stages: the
+// bearing capacity is bracketed between the largest pressure at which the soil finds equilibrium
+// and the first at which it does not.
+//
+// Half the problem by symmetry: soil of half-width W and depth D, x = 0 the footing's centre line
+// (roller), far side on rollers, base fixed. The footing is a uniform pressure q on the surface
+// over 0 <= x < B/2 (a smooth, flexible strip: Prandtl's mechanism and limit load hold for it as
+// for a smooth rigid one). Stage k loads q_k of -footing_pressures; a stage that reaches its step
+// cap without equilibrium has collapsed, and the run stops there.
+//
+// Exact limit loads for a weightless half-space: von Mises in plane strain (Tresca with
+// k = sigma_y / sqrt(3)) q_u = (2 + pi) k (Prandtl 1920); Drucker-Prager matched to Mohr-Coulomb
+// in plane strain (-mat_soil_match plane_strain, which gives the same plane-strain collapse loads
+// as Mohr-Coulomb for associated flow), q_u = c N_c with N_c = (N_q - 1) cot phi,
+// N_q = e^(pi tan phi) tan^2(45 + phi/2) (Prandtl-Reissner).
+//
+// Linear cells lock under isochoric plastic flow: without -fbar the soil holds pressures above
+// q_u (tests/test_footing.py shows by how much).
+#include "pmpm/materials/drucker_prager.hpp"
+#include "pmpm/materials/von_mises.hpp"
+#include "pmpm/output.hpp"
+#include "pmpm/scene_util.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace pmpm {
+
+class FootingScene final : public Scene {
+  double B_ = 1.0, W_ = 0, D_ = 0;
+  std::vector<double> q_; // stage pressures (Pa)
+  PetscInt ramp_ = 0;     // steps over which a later stage raises the pressure
+  double collapse_ = 0.2; // settlement (in B) past which a stage has collapsed
+  // per stage: pressure, held (equilibrium), settlement of the footing's centre, steps
+  std::vector<double> held_q_, settle_;
+  std::vector<int> held_;
+  std::vector<PetscInt> steps_;
+  bool collapsed_ = false;
+  double q_now_ = 0, q_prev_ = 0;
+
+  // The pressure the traction field carries now: set every loaded particle's traction to q times
+  // its face length (its block's width).
+  PetscErrorCode set_pressure(Simulation &sim, double q) {
+    ParticleView P;
+    PetscFunctionBeginUser;
+    PetscCall(ParticlesGetView(sim.parts, P));
+    for (const PetscInt p : sim.traction_idx) P.traction[p * DIM + 1] = -q * 2.0 * P.lp[p * DIM];
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    q_now_ = q;
+    PetscFunctionReturn(0);
+  }
+
+  // Mean vertical displacement of the loaded particles (the footing's settlement, positive down).
+  PetscErrorCode settlement(Simulation &sim, double *s) {
+    ParticleView P;
+    double v[2] = {0, 0};
+    PetscFunctionBeginUser;
+    PetscCall(ParticlesGetView(sim.parts, P));
+    for (const PetscInt p : sim.traction_idx) {
+      v[0] += P.x0[p * DIM + 1] - P.x[p * DIM + 1];
+      v[1] += 1;
+    }
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    PetscCall(SumAll(sim.comm, v, 2));
+    *s = v[1] > 0 ? v[0] / v[1] : 0;
+    PetscFunctionReturn(0);
+  }
+
+  double exact(const Simulation &sim) const {
+    const Material &m = *sim.mats[0].model;
+    if (const auto *vm = dynamic_cast<const VonMises *>(&m))
+      return (2.0 + M_PI) * vm->params().sigma_y0 / std::sqrt(3.0);
+    if (const auto *dp = dynamic_cast<const DruckerPrager *>(&m)) {
+      const double phi = dp->params().phi_deg * M_PI / 180.0, c = dp->params().cohesion;
+      if (phi <= 0) return (2.0 + M_PI) * c;
+      const double t = std::tan(M_PI / 4 + phi / 2);
+      const double Nq = std::exp(M_PI * std::tan(phi)) * t * t;
+      return c * (Nq - 1.0) / std::tan(phi);
+    }
+    return 0;
+  }
+
+public:
+  PetscErrorCode setup(Simulation &sim) override {
+    PetscInt n = 64;
+    PetscBool set = PETSC_FALSE;
+    PetscFunctionBeginUser;
+    q_.assign(n, 0.0);
+    ramp_ = sim.set.ramp_steps;
+    PetscOptionsBegin(sim.comm, "footing_", "Strip footing on weightless soil", nullptr);
+    PetscCall(PetscOptionsReal("-width", "Footing width B (m), > 0", nullptr, B_, &B_, nullptr));
+    PetscCall(PetscOptionsReal("-soil_width",
+                               "Soil half-width W from the centre line (m); default 3 B", nullptr,
+                               W_, &W_, nullptr));
+    PetscCall(PetscOptionsReal("-soil_depth", "Soil depth D (m); default 2 B", nullptr, D_, &D_,
+                               nullptr));
+    PetscCall(PetscOptionsRealArray("-pressures",
+                                    "Footing pressure of each stage (Pa), increasing, > 0", nullptr,
+                                    q_.data(), &n, &set));
+    PetscCall(PetscOptionsReal("-collapse_settlement",
+                               "Settlement over B past which a stage has collapsed (the soil "
+                               "flows on; the stage ends there), > 0",
+                               nullptr, collapse_, &collapse_, nullptr));
+    PetscCall(PetscOptionsInt("-stage_ramp",
+                              "Steps over which a later stage raises the pressure (default "
+                              "-ramp_steps)",
+                              nullptr, ramp_, &ramp_, nullptr));
+    PetscOptionsEnd();
+    PetscCheck(set && n >= 1, sim.comm, PETSC_ERR_USER_INPUT,
+               "-footing_pressures is required: the footing pressure of each stage (Pa)");
+    q_.resize(n);
+    for (PetscInt k = 0; k < n; ++k)
+      PetscCheck(q_[k] > 0 && (k == 0 || q_[k] > q_[k - 1]), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-footing_pressures must be positive and increasing (entry %d is %g Pa)", (int)k,
+                 q_[k]);
+    PetscCheck(collapse_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-footing_collapse_settlement must be > 0 (got %g)", collapse_);
+    PetscCheck(ramp_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-footing_stage_ramp must be >= 0");
+    if (W_ <= 0) W_ = 3 * B_;
+    if (D_ <= 0) D_ = 2 * B_;
+    PetscInt nb, nw, nd;
+    PetscCall(CheckCells(sim.comm, "-footing_width / 2", 0.5 * B_, sim.set.h, &nb));
+    PetscCall(CheckCells(sim.comm, "-footing_soil_width", W_, sim.set.h, &nw));
+    PetscCall(CheckCells(sim.comm, "-footing_soil_depth", D_, sim.set.h, &nd));
+    PetscCheck(W_ >= B_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-footing_soil_width (%g m) must be at least the footing width %g m (Prandtl's "
+               "mechanism reaches 1.5 B from the centre for phi = 0)",
+               W_, B_);
+    sim.origin[0] = sim.origin[1] = 0;
+    sim.ncell[0] = nw;
+    // room above the surface for the heave beside a collapsing footing
+    sim.ncell[1] =
+        nd + std::max<PetscInt>(2, static_cast<PetscInt>(std::ceil(0.5 * B_ / sim.set.h)));
+    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
+    sim.face[YMIN] = FaceBC::Fixed;
+    sim.mats.resize(1);
+    PetscCall(MaterialFromOptions(sim.comm, "soil", sim.mats[0]));
+    PetscCheck(sim.mats[0].model->plastic(), sim.comm, PETSC_ERR_USER_INPUT,
+               "-mat_soil_model must be von_mises or drucker_prager (a footing has a bearing "
+               "capacity only in a soil that yields)");
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+    PetscFunctionBeginUser;
+    const double W = W_, D = D_, half = 0.5 * B_;
+    FillRegular(
+        sim, [W, D](const double x[DIM]) { return x[0] < W && x[1] < D ? 0 : -1; }, out);
+    // the surface row under the footing carries its pressure (stage 0's, ramped by the relaxation)
+    for (auto &q : out)
+      if (q.x[1] + q.lp[1] > D - 1e-9 * sim.set.h && q.x[0] < half) {
+        q.traction[1] = -q_[0] * 2.0 * q.lp[0];
+        q.tface[1] = q.lp[1];
+      }
+    PetscFunctionReturn(0);
+  }
+
+  PetscInt stages() const override { return static_cast<PetscInt>(q_.size()) - 1; }
+
+  bool finished() const override { return collapsed_; }
+
+  PetscErrorCode begin_stage(Simulation &sim, PetscInt k) override {
+    PetscFunctionBeginUser;
+    sim.stage_ramp = ramp_; // no convergence before the new pressure is fully on
+    q_prev_ = k == 0 ? 0 : q_[k - 1];
+    q_now_ = q_[k];
+    PetscFunctionReturn(0);
+  }
+
+  // Later stages raise the pressure linearly over the stage ramp; a footing that has sunk past
+  // the collapse settlement ends its stage (checked every 50 steps: one reduction).
+  PetscErrorCode monitor(Simulation &sim) override {
+    PetscFunctionBeginUser;
+    const PetscInt k = sim.run.stage_step;
+    if (sim.stage > 0 && k >= 1) {
+      const double r = ramp_ > 0 ? std::fmin(1.0, double(k) / ramp_) : 1.0;
+      PetscCall(set_pressure(sim, q_prev_ + r * (q_[sim.stage] - q_prev_)));
+    }
+    if (k > 0 && k % 50 == 0) {
+      double s = 0;
+      PetscCall(settlement(sim, &s));
+      if (s > collapse_ * B_) sim.run.stop_stage = true;
+    }
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode end_stage(Simulation &sim, PetscInt k) override {
+    double s = 0;
+    PetscFunctionBeginUser;
+    PetscCall(settlement(sim, &s));
+    held_q_.push_back(q_[k]);
+    held_.push_back(sim.run.converged ? 1 : 0);
+    settle_.push_back(s);
+    steps_.push_back(sim.run.stage_step);
+    collapsed_ = !sim.run.converged;
+    if (!sim.set.quiet)
+      PetscCall(PetscPrintf(sim.comm, "footing: q = %.6g Pa (%.4f of q_u) %s, settlement %.4g m\n",
+                            q_[k], q_[k] / exact(sim), collapsed_ ? "collapsed" : "holds", s));
+    PetscFunctionReturn(0);
+  }
+
+  PetscErrorCode results(Simulation &sim, std::string &json) override {
+    PetscFunctionBeginUser;
+    double lower = 0, upper = -1;
+    for (size_t k = 0; k < held_.size(); ++k) {
+      if (held_[k]) lower = held_q_[k];
+      if (!held_[k] && upper < 0) upper = held_q_[k];
+    }
+    const double qu = exact(sim);
+    json = json_kv("footing_width", B_) + ",\n    " + json_kv("bearing_capacity", lower) +
+           ",\n    " +
+           (upper > 0 ? json_kv("bearing_capacity_upper", upper)
+                      : std::string("\"bearing_capacity_upper\": null")) +
+           ",\n    " + json_kv("bearing_capacity_exact", qu) + ",\n    " +
+           json_kv("fbar", sim.set.fbar ? 1.0 : 0.0) + ",\n    \"stages\": [";
+    for (size_t k = 0; k < held_.size(); ++k) {
+      char row[200];
+      std::snprintf(row, sizeof(row),
+                    "%s{\"pressure\": %.9g, \"holds\": %s, \"settlement\": %.9g, \"steps\": %d}",
+                    k ? ", " : "", held_q_[k], held_[k] ? "true" : "false", settle_[k],
+                    (int)steps_[k]);
+      json += row;
+    }
+    json += "]";
+    PetscFunctionReturn(0);
+  }
+};
+
+std::unique_ptr<Scene> make_footing_scene() {
+  return std::make_unique<FootingScene>();
+}
+
+} // namespace pmpm

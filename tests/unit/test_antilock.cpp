@@ -1,0 +1,127 @@
+// Unit tests of F-bar (antilock.hpp) on plain arrays:
+//   fbar_groups: cell and body of each particle among the owned cells, -1 outside them;
+//   fbar_apply: every particle of a group ends the step with the group's volume ratio
+//   (sum of new volumes / sum of old volumes), the group's total volume is unchanged, each
+//   particle's isochoric increment (I + du) / sqrt(det) is its own, F and vol follow the
+//   increment, and groups (cells, bodies) do not mix. A uniform increment is left untouched.
+#include "check.hpp"
+#include "pmpm/antilock.hpp"
+#include <cmath>
+#include <vector>
+
+using namespace pmpm;
+
+namespace {
+
+struct Particles {
+  std::vector<double> x, F, vol, du;
+  std::vector<PetscInt> body;
+  ParticleView P;
+  explicit Particles(int n) : x(2 * n), F(4 * n), vol(n), du(4 * n), body(n, 0) {
+    P.n = n;
+    P.x = x.data();
+    P.F = F.data();
+    P.vol = vol.data();
+    P.body = body.data();
+  }
+};
+
+double det(const double *a) {
+  return a[0] * a[3] - a[1] * a[2];
+}
+
+void test_groups() {
+  Particles s(5);
+  const double origin[2] = {-1.0, 0.0}, h = 0.5;
+  const PetscInt lo[2] = {2, 1}, hi[2] = {5, 3}; // owned cells i 2..4, j 1..2
+  const double pts[5][2] = {{0.1, 0.6}, {0.4, 0.9}, {1.4, 1.4}, {-0.9, 0.6}, {0.1, 1.6}};
+  for (int p = 0; p < 5; ++p) {
+    s.x[2 * p] = pts[p][0];
+    s.x[2 * p + 1] = pts[p][1];
+  }
+  s.body[1] = 2;
+  std::vector<int> g;
+  fbar_groups(s.P, origin, h, lo, hi, 3, g);
+  // particle 0: cell (2, 1) -> ((1-1)*3 + 0)*3 + 0 = 0; particle 1: cell (2, 1), body 2 -> 2
+  CHECK(g[0] == 0);
+  CHECK(g[1] == 2);
+  // particle 2: cell (4, 2) -> ((2-1)*3 + 2)*3 = 15
+  CHECK(g[2] == 15);
+  CHECK(g[3] == -1); // cell (0, 1): not owned
+  CHECK(g[4] == -1); // cell (2, 3): not owned
+}
+
+void test_apply() {
+  // group 0: three particles with different increments; group 1: one particle; group -1: one
+  Particles s(5);
+  pmpm_test::Lcg r(7);
+  std::vector<int> g = {0, 0, 0, 1, -1};
+  double old_vol[5], du0[5][4], F0[5][4];
+  for (int p = 0; p < 5; ++p) {
+    double *du = &s.du[4 * p], *F = &s.F[4 * p];
+    for (int k = 0; k < 4; ++k) du[k] = r.uniform(-0.02, 0.02);
+    F[0] = 1.0 + r.uniform(-0.1, 0.1);
+    F[1] = r.uniform(-0.1, 0.1);
+    F[2] = r.uniform(-0.1, 0.1);
+    F[3] = 1.0 + r.uniform(-0.1, 0.1);
+    old_vol[p] = r.uniform(0.5, 1.5);
+    // the state g2p leaves: vol already times the particle's own step ratio
+    const double I_du[4] = {1 + du[0], du[1], du[2], 1 + du[3]};
+    s.vol[p] = old_vol[p] * det(I_du);
+    for (int k = 0; k < 4; ++k) du0[p][k] = du[k], F0[p][k] = F[k];
+  }
+  double new_sum = 0, old_sum = 0;
+  for (int p = 0; p < 3; ++p) new_sum += s.vol[p], old_sum += old_vol[p];
+  const double vol_untouched = s.vol[4], vol_alone = s.vol[3];
+  std::vector<double> sums;
+  const double change = fbar_apply(s.P, g, sums, s.du.data());
+  CHECK(change > 1e-4); // the increments differed: the average moved them
+  const double ratio = new_sum / old_sum;
+  double after = 0;
+  for (int p = 0; p < 3; ++p) {
+    const double *du = &s.du[4 * p];
+    const double I_du[4] = {1 + du[0], du[1], du[2], 1 + du[3]};
+    CHECK_CLOSE(det(I_du), ratio, 1e-14); // the group's volume ratio
+    CHECK_CLOSE(s.vol[p] / old_vol[p], ratio, 1e-14);
+    after += s.vol[p];
+    // isochoric part kept: (I + du_bar) = s (I + du)
+    const double I0[4] = {1 + du0[p][0], du0[p][1], du0[p][2], 1 + du0[p][3]};
+    const double sc = std::sqrt(ratio / det(I0));
+    for (int k = 0; k < 4; ++k) CHECK_CLOSE(I_du[k], sc * I0[k], 1e-14);
+    for (int k = 0; k < 4; ++k) CHECK_CLOSE(s.F[4 * p + k], sc * F0[p][k], 1e-14);
+  }
+  CHECK_CLOSE(after, new_sum, 1e-13); // the group's volume is conserved
+  // a group of one and a particle outside every group are unchanged
+  CHECK_CLOSE(s.vol[3], vol_alone, 1e-15);
+  CHECK_CLOSE(s.vol[4], vol_untouched, 0.0);
+  for (int k = 0; k < 4; ++k) {
+    CHECK_CLOSE(s.du[12 + k], du0[3][k], 1e-15);
+    CHECK_CLOSE(s.du[16 + k], du0[4][k], 0.0);
+  }
+}
+
+void test_uniform() {
+  // the same increment everywhere: F-bar changes nothing
+  Particles s(4);
+  std::vector<int> g = {0, 0, 0, 0};
+  const double du[4] = {0.01, -0.004, 0.003, -0.02};
+  const double d = (1 + du[0]) * (1 + du[3]) - du[1] * du[2];
+  for (int p = 0; p < 4; ++p) {
+    for (int k = 0; k < 4; ++k) s.du[4 * p + k] = du[k];
+    s.F[4 * p] = s.F[4 * p + 3] = 1.0;
+    s.vol[p] = (1.0 + 0.1 * p) * d;
+  }
+  std::vector<double> sums;
+  CHECK_CLOSE(fbar_apply(s.P, g, sums, s.du.data()), 0.0, 1e-15);
+  for (int p = 0; p < 4; ++p)
+    for (int k = 0; k < 4; ++k) CHECK_CLOSE(s.du[4 * p + k], du[k], 1e-15);
+}
+
+} // namespace
+
+int main() {
+  test_groups();
+  test_apply();
+  test_uniform();
+  return pmpm_test::report("antilock");
+}
