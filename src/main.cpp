@@ -4,6 +4,7 @@ static const char help[] =
     "Scenes: bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover.\n"
     "-help lists every option.\n\n";
 
+#include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
 #include "pmpm/output.hpp"
 #include <cstdio>
@@ -49,6 +50,8 @@ static PetscErrorCode Run() {
     PetscFunctionReturn(0);
   }
   PetscCall(CheckUnusedOptions(sim.comm, sim.set.scene));
+  // -restart: the state set up from the options is replaced by the checkpoint's
+  if (!sim.set.restart.empty()) PetscCall(CheckpointRead(sim, sim.set.restart));
 
   PetscCall(PetscLogStagePush(st_relax));
   PetscCall(RunStages(sim));

@@ -107,7 +107,9 @@ PetscErrorCode OutputPrepareDirectory(Simulation &sim) {
     PetscCall(PetscLogEventRegister("Output", cls, &ev_output));
   }
   PetscErrorCode ierr = 0;
-  if (sim.rank == 0) ierr = MakeDirs(sim.set.output_dir + (sim.set.output_every || sim.nstages > 0 ? "/series" : ""));
+  if (sim.rank == 0)
+    ierr =
+        MakeDirs(sim.set.output_dir + (sim.set.output_every || sim.nstages > 0 ? "/series" : ""));
   PetscCallMPI(MPI_Bcast(&ierr, 1, MPI_INT, 0, sim.comm));
   PetscCheck(!ierr, sim.comm, PETSC_ERR_FILE_OPEN, "cannot create -output_dir %s",
              sim.set.output_dir.c_str());
@@ -186,6 +188,10 @@ PetscErrorCode OutputSeriesFrame(Simulation &sim) {
   snprintf(name, sizeof(name), "series/particles_%08d.h5", (int)sim.run.step);
   PetscCall(OutputParticles(sim, name));
   PetscFunctionReturn(0);
+}
+
+std::vector<std::string> &OutputSeriesFrames() {
+  return g_series;
 }
 
 PetscErrorCode OutputSeriesFinish(Simulation &sim) {
