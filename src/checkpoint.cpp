@@ -256,7 +256,8 @@ PetscErrorCode CheckpointWriteArray(PetscViewer v, const char *name, const std::
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   // the length first, so an empty array is a dataset too
-  const PetscInt n = static_cast<PetscInt>(a.size()) + 1;
+  PetscInt n = static_cast<PetscInt>(a.size()) + 1;
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm)); // rank 0's array (others may hold none)
   PetscCall(VecCreateMPI(comm, rank == 0 ? n : 0, n, &x));
   PetscCall(PetscObjectSetName((PetscObject)x, name));
   if (rank == 0) {
