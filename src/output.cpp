@@ -184,7 +184,9 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
 PetscErrorCode OutputSeriesFrame(Simulation &sim) {
   char name[64];
   PetscFunctionBeginUser;
-  if (sim.run.step == sim.set.output_every) PetscCall(OutputPrepareDirectory(sim)); // first frame
+  static bool first = true; // this process's first frame (a restarted run's may come later)
+  if (first) PetscCall(OutputPrepareDirectory(sim));
+  first = false;
   snprintf(name, sizeof(name), "series/particles_%08d.h5", (int)sim.run.step);
   PetscCall(OutputParticles(sim, name));
   PetscFunctionReturn(0);

@@ -156,8 +156,10 @@ PetscErrorCode Relax(Simulation &sim) {
   }
   const double c0 = run.c0;
   const bool kinetic = s.damping == Damping::Kinetic || s.damping == Damping::Both;
-  const double t_start = MPI_Wtime();
-  double t_last = t_start, log_ratio_last = 0;
+  // a resumed stage counts the seconds it ran before the checkpoint
+  const double t_start = MPI_Wtime() - (resume ? run.stage_seconds : 0.0);
+  double t_last = MPI_Wtime();
+  double log_ratio_last = resume ? std::log10(std::fmax(run.ratio, 1e-300)) : 0.0;
   // Stage 0 ramps the loads; a later stage ramps its change (the shrinkage) at full load.
   const bool first = sim.stage == 0;
   const PetscInt ramp = first ? s.ramp_steps : sim.stage_ramp;
@@ -284,8 +286,10 @@ PetscErrorCode Relax(Simulation &sim) {
     run.dt = s.cfl * s.h / run.max_speed; // stable step from the current wave speeds
     // a checkpoint between two steps of the stage; one at the step that ends the stage is
     // written by RunStages after the scene's end_stage
-    if (s.checkpoint_every > 0 && run.step % s.checkpoint_every == 0 && k < s.max_steps)
+    if (s.checkpoint_every > 0 && run.step % s.checkpoint_every == 0 && k < s.max_steps) {
+      run.stage_seconds = MPI_Wtime() - t_start;
       PetscCall(CheckpointWrite(sim, true));
+    }
   }
   if (k > s.max_steps) run.stage_step = s.max_steps;
   run.stage_seconds = MPI_Wtime() - t_start;
