@@ -19,6 +19,7 @@ namespace pmpm {
 
 namespace {
 constexpr const char *kFormat = "pmpm checkpoint 1";
+std::string g_reading = "the checkpoint"; // the file CheckpointRead is reading (messages)
 PetscLogEvent ev_write = 0, ev_read = 0;
 
 PetscErrorCode RegisterEvents() {
@@ -276,10 +277,11 @@ PetscErrorCode CheckpointReadArray(PetscViewer v, const char *name, std::vector<
   MPI_Comm comm = PetscObjectComm((PetscObject)v);
   std::vector<double> all;
   PetscFunctionBeginUser;
-  PetscCall(NeedDataset(v, name, "the checkpoint"));
+  PetscCall(NeedDataset(v, name, g_reading));
   PetscCall(ReadAll(comm, v, name, all));
   PetscCheck(!all.empty() && all[0] == double(all.size() - 1), comm, PETSC_ERR_FILE_UNEXPECTED,
-             "-restart: checkpoint array %s is damaged (its length does not match)", name);
+             "-restart %s: damaged checkpoint (array %s: its length does not match)",
+             g_reading.c_str(), name);
   a.assign(all.begin() + 1, all.end());
   PetscFunctionReturn(0);
 }
@@ -299,7 +301,7 @@ PetscErrorCode CheckpointReadReal(PetscViewer v, const char *name, double *x) {
   PetscCall(PetscViewerHDF5GetGroup(v, nullptr, &group));
   const std::string g = group ? group : "/";
   PetscCall(PetscFree(group));
-  PetscCall(GetReal(v, g.c_str(), name, "the checkpoint", x));
+  PetscCall(GetReal(v, g.c_str(), name, g_reading, x));
   PetscFunctionReturn(0);
 }
 
@@ -452,6 +454,7 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
   PetscCall(RegisterEvents());
   PetscCall(PetscLogEventBegin(ev_read, 0, 0, 0, 0));
   PetscCall(CheckFile(sim.comm, sim.rank, file));
+  g_reading = file;
   PetscCall(PetscViewerHDF5Open(sim.comm, F, FILE_MODE_READ, &v));
 
   // the same run? scene, cell size, grid, particles generated, chains

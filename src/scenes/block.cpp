@@ -177,7 +177,7 @@ public:
     PetscFunctionBeginUser;
     PetscCall(CheckpointReadArray(v, "state", s));
     PetscCheck(s.size() == 20, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
-               "-restart: the checkpoint's block state is damaged");
+               "-restart %s: damaged checkpoint (the block's state)", sim.set.restart.c_str());
     mass0_ = s[0], n0_ = s[1], L0_ = s[2];
     impulse_[0] = s[3], impulse_[1] = s[4], P0_[0] = s[5], P0_[1] = s[6];
     force_[0] = s[7], force_[1] = s[8];

@@ -771,7 +771,7 @@ public:
     PetscCall(CheckpointReadReal(v, "void_width", &void_now_));
     PetscCall(CheckpointReadReal(v, "void_width_effective", &void_eff_));
     PetscCheck(rows.size() % kRow == 0 && ref.size() % 2 == 0, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
-               "-restart: the checkpoint's cover state is damaged");
+               "-restart %s: damaged checkpoint (the cover's state)", sim.set.restart.c_str());
     face_types_.clear();
     for (double t : ft) face_types_.push_back(static_cast<FaceType>(static_cast<int>(t)));
     surf_ref_.clear();
