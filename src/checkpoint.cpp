@@ -137,6 +137,20 @@ PetscErrorCode NeedDataset(PetscViewer v, const char *name, const std::string &f
   PetscFunctionReturn(0);
 }
 
+// The number of values in a dataset of the current group (collective: HDF5 metadata).
+PetscErrorCode DatasetSize(PetscViewer v, const char *name, PetscInt *n) {
+  hid_t fid, gid;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5OpenGroup(v, nullptr, &fid, &gid));
+  const hid_t d = H5Dopen2(gid, name, H5P_DEFAULT);
+  const hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
+  *n = sp >= 0 ? static_cast<PetscInt>(H5Sget_simple_extent_npoints(sp)) : -1;
+  if (sp >= 0) H5Sclose(sp);
+  if (d >= 0) H5Dclose(d);
+  H5Gclose(gid);
+  PetscFunctionReturn(0);
+}
+
 // The chains' evolving arrays (per point or per segment), by name.
 struct ChainArrays {
   const char *name;
@@ -573,6 +587,11 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
       const double *a;
       PetscInt N;
       PetscCall(NeedDataset(v, f.name, file));
+      PetscCall(DatasetSize(v, f.name, &N));
+      PetscCheck(N == total * f.bs, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+                 "-restart %s: damaged checkpoint (/particles/%s holds %d values, its counts say "
+                 "%d particles of %d)",
+                 F, f.name, (int)N, (int)total, f.bs);
       PetscCall(VecCreate(sim.comm, &x));
       PetscCall(PetscObjectSetName((PetscObject)x, f.name));
       PetscCall(VecSetSizes(x, nloc * f.bs, PETSC_DETERMINE));

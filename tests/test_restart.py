@@ -15,8 +15,8 @@ usage: test_restart.py EXE OUTDIR
 2. The void cover (tests/cover_void.opts: particles removed at stage 1): restarted on 2 ranks
    from inside the void stage (a checkpoint with fewer particles than the scene generates), bit
    for bit again.
-3. A truncated checkpoint, a file that is not HDF5, a missing file and a checkpoint of another
-   run each stop the restart with exit code != 0, one error line naming -restart and the file,
+3. A truncated checkpoint, a file that is not HDF5, a missing file, a checkpoint missing a
+   particle field or with one too short, and a checkpoint of another run each stop the restart with exit code != 0, one error line naming -restart and the file,
    and no output.
 """
 import csv
@@ -130,9 +130,19 @@ with open(f"{bad}/truncated.h5", "wb") as f:
     f.write(blob[: len(blob) // 2])
 with open(f"{bad}/text.h5", "w") as f:
     f.write("not a checkpoint\n")
+shutil.copy(src, f"{bad}/missing_field.h5")
+with h5py.File(f"{bad}/missing_field.h5", "a") as f:
+    del f["particles/stress"]
+shutil.copy(src, f"{bad}/short_field.h5")
+with h5py.File(f"{bad}/short_field.h5", "a") as f:
+    s = f["particles/stress"][:]
+    del f["particles/stress"]
+    f["particles/stress"] = s[:-4]
 cases = [("truncated checkpoint", COLUMN, f"{bad}/truncated.h5"),
          ("non-HDF5 file", COLUMN, f"{bad}/text.h5"),
          ("missing file", COLUMN, f"{bad}/no_such_checkpoint.h5"),
+         ("checkpoint without a particle field", COLUMN, f"{bad}/missing_field.h5"),
+         ("checkpoint with a short particle field", COLUMN, f"{bad}/short_field.h5"),
          ("checkpoint of another run", VOID, src)]
 for what, opts, path in cases:
     d = f"{out}/bad_{what.replace(' ', '_')}"
