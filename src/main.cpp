@@ -5,6 +5,7 @@ static const char help[] =
     "footing.\n"
     "-help lists every option.\n\n";
 
+#include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
 #include "pmpm/output.hpp"
 #include <cstdio>
@@ -50,6 +51,8 @@ static PetscErrorCode Run() {
     PetscFunctionReturn(0);
   }
   PetscCall(CheckUnusedOptions(sim.comm, sim.set.scene));
+  // -restart: the state set up from the options is replaced by the checkpoint's
+  if (!sim.set.restart.empty()) PetscCall(CheckpointRead(sim, sim.set.restart));
 
   PetscCall(PetscLogStagePush(st_relax));
   PetscCall(RunStages(sim));

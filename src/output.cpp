@@ -107,7 +107,9 @@ PetscErrorCode OutputPrepareDirectory(Simulation &sim) {
     PetscCall(PetscLogEventRegister("Output", cls, &ev_output));
   }
   PetscErrorCode ierr = 0;
-  if (sim.rank == 0) ierr = MakeDirs(sim.set.output_dir + (sim.set.output_every || sim.nstages > 0 ? "/series" : ""));
+  if (sim.rank == 0)
+    ierr =
+        MakeDirs(sim.set.output_dir + (sim.set.output_every || sim.nstages > 0 ? "/series" : ""));
   PetscCallMPI(MPI_Bcast(&ierr, 1, MPI_INT, 0, sim.comm));
   PetscCheck(!ierr, sim.comm, PETSC_ERR_FILE_OPEN, "cannot create -output_dir %s",
              sim.set.output_dir.c_str());
@@ -182,10 +184,16 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
 PetscErrorCode OutputSeriesFrame(Simulation &sim) {
   char name[64];
   PetscFunctionBeginUser;
-  if (sim.run.step == sim.set.output_every) PetscCall(OutputPrepareDirectory(sim)); // first frame
+  static bool first = true; // this process's first frame (a restarted run's may come later)
+  if (first) PetscCall(OutputPrepareDirectory(sim));
+  first = false;
   snprintf(name, sizeof(name), "series/particles_%08d.h5", (int)sim.run.step);
   PetscCall(OutputParticles(sim, name));
   PetscFunctionReturn(0);
+}
+
+std::vector<std::string> &OutputSeriesFrames() {
+  return g_series;
 }
 
 PetscErrorCode OutputSeriesFinish(Simulation &sim) {

@@ -110,6 +110,12 @@ PetscErrorCode ParticlesMigrate(Particles &P) {
   PetscFunctionReturn(0);
 }
 
+std::vector<ParticleFieldInfo> ParticlesFieldList() {
+  std::vector<ParticleFieldInfo> list = {{DMSwarmPICField_coor, DIM, false}};
+  for (const auto &f : kFields) list.push_back({f.name, f.bs, f.type == PETSC_INT});
+  return list;
+}
+
 PetscErrorCode ParticlesGlobalCount(Particles &P, PetscInt *n) {
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetSize(P.sw, n));

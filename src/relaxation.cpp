@@ -1,6 +1,7 @@
 // Quasi-static loading by dynamic relaxation: load ramp, damping (local Cundall and/or kinetic),
 // the stable time step from the current wave speeds, instability detection, and convergence by
 // the unbalanced-force ratio max|f_int + f_ext| / mean|f_ext|.
+#include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
 #include "pmpm/output.hpp"
 #include <algorithm>
@@ -43,11 +44,6 @@ constexpr double kEnergyFactor = 2.0;
 // made the slide 0.45 % slow, 5 % made it 4.6 % slow; undamped, 76 % stopped it. The
 // quasi-static landfill shows 1.9e-4 (mu 0.3) and 1.3e-3 (mu 0).
 constexpr double kTensionWarn = 0.01;
-struct EnergyBudget {
-  double e0 = 0;      // kinetic + elastic energy before the first step of the stage
-  double w_local = 0; // this rank's part of W_ext
-  double floor = 0;   // 1e-14 sum_p M_p V_p
-};
 
 // sum_p f_p . v_p over this rank's particles (the load's power after the step).
 // Power of the surface tractions on this rank's loaded particles (per unit load factor); the
@@ -75,7 +71,10 @@ double ElasticEnergy(const Simulation &sim, const ParticleView &P) {
   return u;
 }
 
-PetscErrorCode EnergyBudgetInit(Simulation &sim, EnergyBudget &eb) {
+// The budget lives in RunState (budget_e0: kinetic + elastic energy before the stage's first
+// step; budget_w_local: this rank's part of W_ext; budget_floor: 1e-14 sum_p M_p V_p), so a
+// checkpoint carries it.
+PetscErrorCode EnergyBudgetInit(Simulation &sim) {
   ParticleView P;
   double s[2] = {0, 0};
   PetscFunctionBeginUser;
@@ -92,9 +91,9 @@ PetscErrorCode EnergyBudgetInit(Simulation &sim, EnergyBudget &eb) {
       for (int k = 0; k + 1 < c.n; ++k) s[1] += c.law.J * c.l0[k];
   s[0] += u;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, s, 2, MPI_DOUBLE, MPI_SUM, sim.comm));
-  eb = EnergyBudget{};
-  eb.e0 = s[0];
-  eb.floor = 1e-14 * s[1];
+  sim.run.budget_e0 = s[0];
+  sim.run.budget_w_local = 0;
+  sim.run.budget_floor = 1e-14 * s[1];
   PetscFunctionReturn(0);
 }
 
@@ -140,37 +139,44 @@ PetscErrorCode Relax(Simulation &sim) {
   RunState &run = sim.run;
   Load load;
   StepReport rep;
-  double c0;
   PetscFunctionBeginUser;
   for (int d = 0; d < DIM; ++d) load.gdir[d] = s.gdir[d];
-  PetscCall(InitialWaveSpeed(sim, &c0));
-  run.max_speed = c0;
-  run.dt = s.cfl * s.h / c0;
+  // A stage resumed from a checkpoint continues with the state the checkpoint restored (its
+  // wave speed limit, step size, damping and energy budget); a new one starts them.
+  const bool resume = sim.resume && sim.resume_in_stage;
+  sim.resume = false;
+  run.stop_stage = false;
+  if (!resume) {
+    PetscCall(InitialWaveSpeed(sim, &run.c0));
+    run.max_speed = run.c0;
+    run.dt = s.cfl * s.h / run.c0;
+    run.kinetic_prev = 0;
+    run.converged = false;
+    run.ke_window = -1; // kinetic energy 100 steps ago, for the growth test
+    PetscCall(EnergyBudgetInit(sim));
+  }
+  const double c0 = run.c0;
   const bool kinetic = s.damping == Damping::Kinetic || s.damping == Damping::Both;
-  const double t_start = MPI_Wtime();
-  double t_last = t_start, log_ratio_last = 0;
-  PetscInt step_last = 0;
+  // a resumed stage counts the seconds it ran before the checkpoint
+  const double t_start = MPI_Wtime() - (resume ? run.stage_seconds : 0.0);
+  double t_last = MPI_Wtime();
+  double log_ratio_last = resume ? std::log10(std::fmax(run.ratio, 1e-300)) : 0.0;
   // Stage 0 ramps the loads; a later stage ramps its change (the shrinkage) at full load.
   const bool first = sim.stage == 0;
   const PetscInt ramp = first ? s.ramp_steps : sim.stage_ramp;
   char stage_tag[48] = "";
   if (sim.nstages > 0)
     snprintf(stage_tag, sizeof(stage_tag), "stage %d/%d  ", (int)sim.stage, (int)sim.nstages);
-  run.kinetic_prev = 0;
-  run.converged = false;
-  run.stop_stage = false;
-  double ke_window = -1; // kinetic energy 100 steps ago, for the growth test
-  EnergyBudget budget;
-  PetscCall(EnergyBudgetInit(sim, budget));
   char why_buf[384];
-  if (!s.quiet && first)
+  if (!s.quiet && first && !resume)
     PetscCall(PetscPrintf(sim.comm,
                           "pmpm %s: %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g m, "
                           "shape %s, dt = %.3e s (cfl %g), tolerance %g\n",
                           s.scene.c_str(), sim.ncell[0], sim.ncell[1], s.h,
                           ShapeKindNames[(int)s.shape], run.dt, s.cfl, s.tol));
 
-  PetscInt k = 1;
+  PetscInt k = resume ? run.stage_step + 1 : 1;
+  PetscInt step_last = k - 1;
   for (; k <= s.max_steps; ++k) {
     run.stage_step = k;
     ++run.step;
@@ -185,7 +191,7 @@ PetscErrorCode Relax(Simulation &sim) {
         pw += TractionPower(P, sim.traction_idx);
         PetscCall(ParticlesRestoreView(sim.parts, P));
       }
-      budget.w_local += run.dt * load.factor * pw + rep.eigen_power;
+      run.budget_w_local += run.dt * load.factor * pw + rep.eigen_power;
     }
     run.time += run.dt;
     PetscCall(sim.scene->monitor(sim));
@@ -204,18 +210,18 @@ PetscErrorCode Relax(Simulation &sim) {
     else if (vmax > c0)
       why = "particle speed exceeds the material wave speed";
     if (ramped && k % 100 == 0) {
-      if (ke_window > 0 && run.kinetic > 1e8 * ke_window && !s.dynamic)
+      if (run.ke_window > 0 && run.kinetic > 1e8 * run.ke_window && !s.dynamic)
         why = "kinetic energy grew 1e8-fold in 100 steps after the load ramp";
-      ke_window = run.kinetic;
+      run.ke_window = run.kinetic;
     }
     if (!why && k % kEnergyEvery == 0) {
       ParticleView P;
       PetscCall(ParticlesGetView(sim.parts, P));
-      double e[2] = {ElasticEnergy(sim, P), budget.w_local};
+      double e[2] = {ElasticEnergy(sim, P), run.budget_w_local};
       PetscCall(ParticlesRestoreView(sim.parts, P));
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, e, 2, MPI_DOUBLE, MPI_SUM, sim.comm));
-      const double held = run.kinetic + e[0], allowed = budget.e0 + e[1];
-      if (!(held <= kEnergyFactor * allowed + budget.floor)) {
+      const double held = run.kinetic + e[0], allowed = run.budget_e0 + e[1];
+      if (!(held <= kEnergyFactor * allowed + run.budget_floor)) {
         double at[4] = {-1, 0, 0, 0};
         PetscCall(FastestParticle(sim, at));
         snprintf(why_buf, sizeof(why_buf),
@@ -279,6 +285,12 @@ PetscErrorCode Relax(Simulation &sim) {
     if (run.converged || run.stop_stage) break;
     run.max_speed = rep.g2p.max_speed;
     run.dt = s.cfl * s.h / run.max_speed; // stable step from the current wave speeds
+    // a checkpoint between two steps of the stage; one at the step that ends the stage is
+    // written by RunStages after the scene's end_stage
+    if (s.checkpoint_every > 0 && run.step % s.checkpoint_every == 0 && k < s.max_steps) {
+      run.stage_seconds = MPI_Wtime() - t_start;
+      PetscCall(CheckpointWrite(sim, true));
+    }
   }
   if (k > s.max_steps) run.stage_step = s.max_steps;
   run.stage_seconds = MPI_Wtime() - t_start;

@@ -82,6 +82,22 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                              "of one body in one cell (F-bar)",
                              nullptr, fbar, &fbar, nullptr));
   s.fbar = fbar;
+  PetscBool stage_end = s.checkpoint_stage_end ? PETSC_TRUE : PETSC_FALSE;
+  char restart[PETSC_MAX_PATH_LEN] = "";
+  PetscCall(PetscOptionsInt("-checkpoint_every",
+                            "Write the complete state to <output_dir>/checkpoint_<step>.h5 every "
+                            "K steps, K >= 0 (0: never)",
+                            nullptr, s.checkpoint_every, &s.checkpoint_every, nullptr));
+  PetscCall(PetscOptionsBool("-checkpoint_at_stage_end",
+                             "Write the complete state to <output_dir>/checkpoint_<step>.h5 after "
+                             "every stage",
+                             nullptr, stage_end, &stage_end, nullptr));
+  s.checkpoint_stage_end = stage_end;
+  PetscCall(PetscOptionsString("-restart",
+                               "Resume from a checkpoint file (same options files as the run "
+                               "that wrote it; any rank count)",
+                               nullptr, restart, restart, sizeof(restart), &set));
+  s.restart = set ? std::string(restart) : "";
   PetscOptionsEnd();
 
   PetscCheck(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
@@ -97,6 +113,11 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscCheck(s.pic >= 0 && s.pic <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-pic must be in [0, 1] (got %g)", s.pic);
   PetscCheck(s.output_every >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_every must be >= 0");
+  PetscCheck(s.checkpoint_every >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-checkpoint_every must be >= 0 steps (got %" PetscInt_FMT "; 0: never)",
+             s.checkpoint_every);
+  PetscCheck(!set || !s.restart.empty(), comm, PETSC_ERR_USER_INPUT,
+             "-restart needs a checkpoint file (<output_dir>/checkpoint_<step>.h5)");
   const double gn = std::hypot(s.gdir[0], s.gdir[1]);
   PetscCheck(gn > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity_dir must be non-zero");
   for (int d = 0; d < DIM; ++d) s.gdir[d] /= gn;
@@ -448,6 +469,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(SimulationIndexParticles(sim));
   PetscInt n;
   PetscCall(ParticlesGlobalCount(sim.parts, &n));
+  sim.particles_setup = n;
   PetscCheck(n > 0 || nchain > 0, sim.comm, PETSC_ERR_USER_INPUT,
              "the scene produced no particles: check the geometry options against -cell_size");
   // Step 0: monitor() also sees the initial state, where scenes may set an initial velocity field.

@@ -2,6 +2,7 @@
 // stage. Stage 0 is the scene's initial state under its loads (for a cover, the geostatic state);
 // each later stage is a change the scene makes (waste shrinks, a void opens) followed by a new
 // equilibrium, which the scene records.
+#include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
 #include <cmath>
 #include <cstdio>
@@ -12,17 +13,27 @@ PetscErrorCode RunStages(Simulation &sim) {
   PetscFunctionBeginUser;
   const PetscInt n = sim.scene->stages();
   sim.nstages = n;
-  bool all = true;
+  // a restarted run (checkpoint.hpp) continues at the checkpoint's stage: inside it, or at its
+  // start after the previous stage's end
+  const PetscInt k0 = sim.resume ? sim.stage : 0;
+  if (!sim.resume) sim.run.all_converged = true;
   double later = 0; // wall time of the stages after stage 0
-  for (PetscInt k = 0; k <= n; ++k) {
+  for (PetscInt k = k0; k <= n; ++k) {
     sim.stage = k;
-    sim.stage_ramp = 0;
-    sim.stage_shrink = 0;
-    PetscCall(sim.scene->begin_stage(sim, k));
-    PetscCall(Relax(sim));
-    all = all && sim.run.converged;
+    if (!(sim.resume && sim.resume_in_stage)) {
+      sim.stage_ramp = 0;
+      sim.stage_shrink = 0;
+      PetscCall(sim.scene->begin_stage(sim, k));
+    }
+    PetscCall(Relax(sim)); // clears sim.resume
+    sim.run.all_converged = sim.run.all_converged && sim.run.converged;
     PetscCall(sim.scene->end_stage(sim, k));
     if (sim.scene->finished()) break;
+    // after the scene's record: a checkpoint at every stage's end, or at a -checkpoint_every step
+    // that ended the stage (Relax writes the others)
+    const PetscInt every = sim.set.checkpoint_every;
+    if (sim.set.checkpoint_stage_end || (every > 0 && sim.run.step % every == 0))
+      PetscCall(CheckpointWrite(sim, false));
     if (n > 0 && k < n && !sim.set.quiet) {
       // the later stages each make a change of the same size: their mean time, or stage 0's
       // until one has run
@@ -33,7 +44,9 @@ PetscErrorCode RunStages(Simulation &sim) {
                             per * double(n - k)));
     }
   }
-  sim.run.converged = all;
+  sim.resume = false;
+  sim.stage = n; // also after a restart from the last stage's end
+  sim.run.converged = sim.run.all_converged;
   PetscFunctionReturn(0);
 }
 

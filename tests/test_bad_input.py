@@ -63,6 +63,8 @@ cases = [
      "-cover_shrink_total"),
     ("cover surface not spanning the width", ["-options_file", "options/cover_slope.opts",
                                               "-cover_surface", "0,5,50,8"], "-cover_surface"),
+    ("negative checkpoint interval", ["-options_file", "options/bar.opts", "-checkpoint_every",
+                                      "-1"], "-checkpoint_every"),
     ("misspelled option", ["-options_file", "options/bar.opts", "-cell_sise", "0.001"],
      "-cell_sise"),
     ("an option of another material model", ["-options_file", "options/bar.opts",

@@ -4,6 +4,7 @@
 #pragma once
 #include "pmpm/simulation.hpp"
 #include <string>
+#include <vector>
 
 namespace pmpm {
 
@@ -11,6 +12,9 @@ PetscErrorCode OutputPrepareDirectory(Simulation &sim);
 PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name);
 PetscErrorCode OutputSeriesFrame(Simulation &sim);
 PetscErrorCode OutputSeriesFinish(Simulation &sim);
+// The time-series frames listed so far for particles_series.xmf (rank 0): a checkpoint carries
+// them, so a restarted run's series lists the frames written before the restart too.
+std::vector<std::string> &OutputSeriesFrames();
 // Writes DIR/summary.json; results is the body of the "results" object ("k": v, ...).
 PetscErrorCode OutputSummary(Simulation &sim, const std::string &results);
 // Membrane chains: DIR/chain_<name>.csv (profile), DIR/chains.h5 + chains.xmf (polylines).

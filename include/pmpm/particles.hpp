@@ -59,4 +59,13 @@ PetscErrorCode ParticlesRestoreView(Particles &P, ParticleView &v);
 PetscErrorCode ParticlesMigrate(Particles &P);
 PetscErrorCode ParticlesGlobalCount(Particles &P, PetscInt *n);
 
+// Every per-particle field, the coordinates first: its DMSwarm name, values per particle, and
+// whether it holds integers (PETSC_INT) rather than reals. A checkpoint saves them all.
+struct ParticleFieldInfo {
+  const char *name;
+  int bs;
+  bool integer;
+};
+std::vector<ParticleFieldInfo> ParticlesFieldList();
+
 } // namespace pmpm

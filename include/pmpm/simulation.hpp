@@ -43,6 +43,10 @@ struct Settings {
   bool dynamic = false; // -dynamic: no damping, no convergence test (run max_steps)
   bool musl = false;    // -musl: recompute nodal velocities from updated particle momenta
   bool fbar = false;    // -fbar: cell-averaged volume change per step (antilock.hpp)
+  // checkpoint.hpp: write the state every K steps (0: never) and after every stage; resume
+  PetscInt checkpoint_every = 0;
+  bool checkpoint_stage_end = false;
+  std::string restart; // -restart FILE (empty: a fresh run)
 };
 
 struct MaterialEntry {
@@ -77,6 +81,12 @@ public:
   virtual PetscErrorCode end_stage(Simulation &, PetscInt) { return 0; }
   // True when the later stages have no meaning any more (a footing that collapsed).
   virtual bool finished() const { return false; }
+  // Checkpoint and restart (checkpoint.hpp): the scene's own state that changes during a run
+  // (time histories, references, stage records) into and out of the checkpoint's /scene group,
+  // with the helpers of checkpoint.hpp; rank-collective. Default: nothing to save. checkpoint_read
+  // runs after setup and generate, and replaces what they and monitor's step 0 left.
+  virtual PetscErrorCode checkpoint_write(Simulation &, PetscViewer) { return 0; }
+  virtual PetscErrorCode checkpoint_read(Simulation &, PetscViewer) { return 0; }
 };
 
 std::unique_ptr<Scene> make_scene(const std::string &name);
@@ -98,6 +108,14 @@ struct RunState {
   double local_unbalanced_at[DIM] = {0, 0}; // and its node
   PetscInt kinetic_resets = 0;
   bool stop_stage = false; // set by a scene's monitor: end the stage unconverged (a collapse)
+  // What Relax carries from one step of a stage to the next (a checkpoint saves it): the wave
+  // speed at the stage's start (the instability test's speed limit), the kinetic energy 100
+  // steps back (growth test), and the energy budget: kinetic + elastic energy at the stage's
+  // start, this rank's share of the loads' work since, and the round-off floor.
+  double c0 = 0;
+  double ke_window = -1;
+  double budget_e0 = 0, budget_w_local = 0, budget_floor = 0;
+  bool all_converged = true; // every stage so far converged
 };
 
 struct Simulation {
@@ -143,6 +161,10 @@ struct Simulation {
   Shrinkage shrink;
   std::vector<double> eigen; // eigenstrain increments (scratch, 3 per particle)
   RunState run;
+  PetscInt particles_setup = 0; // particles the scene generated (a checkpoint must match)
+  // -restart: the stage loop resumes at `stage`, inside it (after run.stage_step steps) when
+  // resume_in_stage, else at its start (the checkpoint was written after the previous stage)
+  bool resume = false, resume_in_stage = false;
 };
 
 // Setup: options, scene, materials, grid, particles.

@@ -8,6 +8,7 @@
 // (2 v0 / pi) cos(omega t), energy rho v0^2 L B / 4 constant. The period is measured from the
 // zero crossings of the centre-of-mass velocity; the energy is kinetic + elastic
 // (V sigma : C^-1 : sigma / 2) at every step.
+#include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
@@ -73,6 +74,22 @@ public:
     FillRegular(
         sim, [L, B](const double x[DIM]) { return x[0] < L && x[1] < B ? 0 : -1; }, out);
     PetscFunctionReturn(0); // the end traction is the xmax face traction (SimulationSetup)
+  }
+
+  // checkpoint.hpp: the time history so far
+  PetscErrorCode checkpoint_write(Simulation &, PetscViewer v) override {
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointWriteArray(v, "history_t", hist_t_));
+    PetscCall(CheckpointWriteArray(v, "history_v", hist_v_));
+    PetscCall(CheckpointWriteArray(v, "history_e", hist_e_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode checkpoint_read(Simulation &, PetscViewer v) override {
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointReadArray(v, "history_t", hist_t_));
+    PetscCall(CheckpointReadArray(v, "history_v", hist_v_));
+    PetscCall(CheckpointReadArray(v, "history_e", hist_e_));
+    PetscFunctionReturn(0);
   }
 
   PetscErrorCode monitor(Simulation &sim) override {

@@ -10,6 +10,7 @@
 // The particle momentum changes exactly by the impulse of the applied forces, sum dt F (internal
 // forces sum to zero by the partition of unity, and P2G / G2P carry momentum unchanged), so the
 // scene records that impulse and reports the mismatch, which is round-off. Use -dynamic.
+#include "pmpm/checkpoint.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
 #include <cmath>
@@ -139,6 +140,59 @@ public:
           return x[0] > x0 && x[0] < x1 && x[1] > y0 && x[1] < y1 ? 0 : -1;
         },
         out);
+    PetscFunctionReturn(0);
+  }
+
+  // checkpoint.hpp: the step-0 references, the running impulse and mismatches, the next step's
+  // force (the particles' weights carry it too), the rank-boundary bookkeeping. The boundary
+  // itself (split_) and the particle counts per rank are this run's layout's: kept from the
+  // restarted run's setup when the rank count changed.
+  PetscErrorCode checkpoint_write(Simulation &sim, PetscViewer v) override {
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointWriteArray(v, "state",
+                                   {mass0_,
+                                    n0_,
+                                    L0_,
+                                    impulse_[0],
+                                    impulse_[1],
+                                    P0_[0],
+                                    P0_[1],
+                                    force_[0],
+                                    force_[1],
+                                    max_dP_,
+                                    max_dM_,
+                                    max_dN_,
+                                    min_dL_,
+                                    max_dL_,
+                                    double(crossings_),
+                                    double(side_),
+                                    split_,
+                                    double(min_local_),
+                                    double(max_local_),
+                                    double(sim.size)}));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode checkpoint_read(Simulation &sim, PetscViewer v) override {
+    std::vector<double> s;
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointReadArray(v, "state", s));
+    PetscCheck(s.size() == 20, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+               "-restart %s: damaged checkpoint (the block's state)", sim.set.restart.c_str());
+    mass0_ = s[0], n0_ = s[1], L0_ = s[2];
+    impulse_[0] = s[3], impulse_[1] = s[4], P0_[0] = s[5], P0_[1] = s[6];
+    force_[0] = s[7], force_[1] = s[8];
+    max_dP_ = s[9], max_dM_ = s[10], max_dN_ = s[11], min_dL_ = s[12], max_dL_ = s[13];
+    crossings_ = static_cast<PetscInt>(s[14]);
+    if (s[19] == double(sim.size)) {
+      side_ = static_cast<int>(s[15]);
+      split_ = s[16];
+      min_local_ = static_cast<PetscInt>(s[17]);
+      max_local_ = static_cast<PetscInt>(s[18]);
+    } else {
+      side_ = 0;
+      min_local_ = -1;
+      max_local_ = 0;
+    }
     PetscFunctionReturn(0);
   }
 

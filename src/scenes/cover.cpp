@@ -18,6 +18,7 @@
 // Geometry need not fit the grid: particles fill each band (waste, then each layer) column by
 // column, with the band's thickness at the column split into whole rows, so a 0.3 m layer is
 // 0.3 m thick at any cell size (blocks are at most h / ppc tall and at most h / 2, as PMPM needs).
+#include "pmpm/checkpoint.hpp"
 #include "pmpm/giroud.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/output.hpp"
@@ -633,6 +634,32 @@ public:
     PetscFunctionReturn(0);
   }
 
+  // stages.csv: the record of every stage so far
+  PetscErrorCode WriteStages(Simulation &sim) {
+    PetscFunctionBeginUser;
+    PetscCall(OutputPrepareDirectory(sim));
+    if (sim.rank == 0) {
+      const std::string path = sim.set.output_dir + "/stages.csv";
+      FILE *f = std::fopen((path + ".tmp").c_str(), "w");
+      PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
+      std::fprintf(f,
+                   "stage,kind,shrinkage,void_width,surface_settlement,membrane_settlement,"
+                   "differential_settlement,peak_strain,peak_strain_x,peak_tension,max_slip,"
+                   "cover_max_eps_p,void_pressure,void_sag,steps,ratio,converged,wall_seconds\n");
+      for (const StageRow &q : rows_)
+        std::fprintf(f,
+                     "%d,%s,%.6g,%.6g,%.8e,%.8e,%.8e,%.8e,%.6g,%.8e,%.8e,%.8e,%.8e,%.8e,%d,%.3e,%d,"
+                     "%.3f\n",
+                     q.stage, q.kind.c_str(), q.shrink, q.void_width, q.surface_settlement,
+                     q.membrane_settlement, q.differential, q.peak_strain, q.peak_strain_x,
+                     q.peak_tension, q.slip, q.cover_eps_p, q.void_pressure, q.void_sag,
+                     (int)q.steps, q.ratio, q.converged ? 1 : 0, q.wall);
+      std::fclose(f);
+    }
+    PetscCall(OutputCommit(sim, "stages.csv"));
+    PetscFunctionReturn(0);
+  }
+
   PetscErrorCode end_stage(Simulation &sim, PetscInt k) override {
     PetscFunctionBeginUser;
     if (k == 0) { // displacements from here on
@@ -675,26 +702,7 @@ public:
     if (k == 0)
       for (Chain &c : sim.chains) chain_lay(c);
     // the record so far, complete after every stage; a frame for ParaView
-    PetscCall(OutputPrepareDirectory(sim));
-    if (sim.rank == 0) {
-      const std::string path = sim.set.output_dir + "/stages.csv";
-      FILE *f = std::fopen((path + ".tmp").c_str(), "w");
-      PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
-      std::fprintf(f,
-                   "stage,kind,shrinkage,void_width,surface_settlement,membrane_settlement,"
-                   "differential_settlement,peak_strain,peak_strain_x,peak_tension,max_slip,"
-                   "cover_max_eps_p,void_pressure,void_sag,steps,ratio,converged,wall_seconds\n");
-      for (const StageRow &q : rows_)
-        std::fprintf(f,
-                     "%d,%s,%.6g,%.6g,%.8e,%.8e,%.8e,%.8e,%.6g,%.8e,%.8e,%.8e,%.8e,%.8e,%d,%.3e,%d,"
-                     "%.3f\n",
-                     q.stage, q.kind.c_str(), q.shrink, q.void_width, q.surface_settlement,
-                     q.membrane_settlement, q.differential, q.peak_strain, q.peak_strain_x,
-                     q.peak_tension, q.slip, q.cover_eps_p, q.void_pressure, q.void_sag,
-                     (int)q.steps, q.ratio, q.converged ? 1 : 0, q.wall);
-      std::fclose(f);
-    }
-    PetscCall(OutputCommit(sim, "stages.csv"));
+    PetscCall(WriteStages(sim));
     if (sim.nstages > 0) { // one frame per stage (stage 0 alone is particles.h5)
       char name[64];
       snprintf(name, sizeof(name), "series/stage_%03d.h5", (int)k);
@@ -707,6 +715,94 @@ public:
                             "N/m, %d steps\n",
                             r.stage, r.kind.c_str(), r.surface_settlement, r.membrane_settlement,
                             r.differential, 100 * r.peak_strain, r.peak_tension, (int)r.steps));
+    PetscFunctionReturn(0);
+  }
+
+  // What changes during a run: the chains' own face types (stage 0 may run them as paper), the
+  // shrinkage and void applied so far, the stage-0 references and the stage record.
+  static constexpr int kRow = 18;
+  PetscErrorCode checkpoint_write(Simulation &, PetscViewer v) override {
+    PetscFunctionBeginUser;
+    std::vector<double> ft, ref, rows;
+    for (FaceType t : face_types_) ft.push_back(static_cast<double>(t));
+    for (const auto &q : surf_ref_) {
+      ref.push_back(static_cast<double>(q.first));
+      ref.push_back(q.second);
+    }
+    for (const StageRow &q : rows_) {
+      const double kind = q.kind == "geostatic" ? 0 : q.kind == "shrink" ? 1 : 2;
+      const double row[kRow] = {double(q.stage),
+                                kind,
+                                q.shrink,
+                                q.void_width,
+                                q.surface_settlement,
+                                q.membrane_settlement,
+                                q.differential,
+                                q.peak_strain,
+                                q.peak_strain_x,
+                                q.peak_tension,
+                                q.slip,
+                                q.cover_eps_p,
+                                q.void_pressure,
+                                q.void_sag,
+                                q.ratio,
+                                q.wall,
+                                double(q.steps),
+                                q.converged ? 1.0 : 0.0};
+      rows.insert(rows.end(), row, row + kRow);
+    }
+    PetscCall(CheckpointWriteArray(v, "face_types", ft));
+    PetscCall(CheckpointWriteArray(v, "surface_reference", ref)); // rank 0's
+    PetscCall(CheckpointWriteArray(v, "sheet_reference", sheet_ref_));
+    PetscCall(CheckpointWriteArray(v, "stage_rows", rows));
+    PetscCall(CheckpointWriteReal(v, "shrinkage", cum_shrink_));
+    PetscCall(CheckpointWriteReal(v, "void_width", void_now_));
+    PetscCall(CheckpointWriteReal(v, "void_width_effective", void_eff_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode checkpoint_read(Simulation &sim, PetscViewer v) override {
+    std::vector<double> ft, ref, rows;
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointReadArray(v, "face_types", ft));
+    PetscCall(CheckpointReadArray(v, "surface_reference", ref));
+    PetscCall(CheckpointReadArray(v, "sheet_reference", sheet_ref_));
+    PetscCall(CheckpointReadArray(v, "stage_rows", rows));
+    PetscCall(CheckpointReadReal(v, "shrinkage", &cum_shrink_));
+    PetscCall(CheckpointReadReal(v, "void_width", &void_now_));
+    PetscCall(CheckpointReadReal(v, "void_width_effective", &void_eff_));
+    PetscCheck(rows.size() % kRow == 0 && ref.size() % 2 == 0, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+               "-restart %s: damaged checkpoint (the cover's state)", sim.set.restart.c_str());
+    face_types_.clear();
+    for (double t : ft) face_types_.push_back(static_cast<FaceType>(static_cast<int>(t)));
+    surf_ref_.clear();
+    if (sim.rank == 0) // the surface is gathered on rank 0
+      for (size_t j = 0; j < ref.size(); j += 2)
+        surf_ref_[static_cast<PetscInt>(ref[j])] = ref[j + 1];
+    rows_.clear();
+    const char *kinds[3] = {"geostatic", "shrink", "void"};
+    for (size_t j = 0; j < rows.size(); j += kRow) {
+      const double *q = &rows[j];
+      StageRow r;
+      r.stage = static_cast<int>(q[0]);
+      r.kind = kinds[static_cast<int>(q[1])];
+      r.shrink = q[2];
+      r.void_width = q[3];
+      r.surface_settlement = q[4];
+      r.membrane_settlement = q[5];
+      r.differential = q[6];
+      r.peak_strain = q[7];
+      r.peak_strain_x = q[8];
+      r.peak_tension = q[9];
+      r.slip = q[10];
+      r.cover_eps_p = q[11];
+      r.void_pressure = q[12];
+      r.void_sag = q[13];
+      r.ratio = q[14];
+      r.wall = q[15];
+      r.steps = static_cast<PetscInt>(q[16]);
+      r.converged = q[17] != 0;
+      rows_.push_back(r);
+    }
     PetscFunctionReturn(0);
   }
 
@@ -856,6 +952,8 @@ public:
 
   PetscErrorCode write_files(Simulation &sim) override {
     PetscFunctionBeginUser;
+    // again at the end: a run restarted from the last stage's checkpoint ran no stage
+    PetscCall(WriteStages(sim));
     if (!verdict_.empty() && !sim.set.quiet)
       PetscCall(PetscPrintf(sim.comm, "%s\n", verdict_.c_str()));
     PetscFunctionReturn(0);

@@ -16,6 +16,7 @@
 //
 // Linear cells lock under isochoric plastic flow: without -fbar the soil holds pressures above
 // q_u (tests/test_footing.py shows by how much).
+#include "pmpm/checkpoint.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/materials/von_mises.hpp"
 #include "pmpm/output.hpp"
@@ -197,6 +198,33 @@ public:
     if (!sim.set.quiet)
       PetscCall(PetscPrintf(sim.comm, "footing: q = %.6g Pa (%.4f of q_u) %s, settlement %.4g m\n",
                             q_[k], q_[k] / exact(sim), collapsed_ ? "collapsed" : "holds", s));
+    PetscFunctionReturn(0);
+  }
+
+  // The stage record and the pressure ramp's ends (checkpoint.hpp).
+  PetscErrorCode checkpoint_write(Simulation &, PetscViewer v) override {
+    PetscFunctionBeginUser;
+    const std::vector<double> held(held_.begin(), held_.end()), steps(steps_.begin(), steps_.end());
+    PetscCall(CheckpointWriteArray(v, "pressure", held_q_));
+    PetscCall(CheckpointWriteArray(v, "holds", held));
+    PetscCall(CheckpointWriteArray(v, "settlement", settle_));
+    PetscCall(CheckpointWriteArray(v, "steps", steps));
+    PetscCall(CheckpointWriteReal(v, "q_prev", q_prev_));
+    PetscCall(CheckpointWriteReal(v, "q_now", q_now_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode checkpoint_read(Simulation &, PetscViewer v) override {
+    std::vector<double> held, steps;
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointReadArray(v, "pressure", held_q_));
+    PetscCall(CheckpointReadArray(v, "holds", held));
+    PetscCall(CheckpointReadArray(v, "settlement", settle_));
+    PetscCall(CheckpointReadArray(v, "steps", steps));
+    PetscCall(CheckpointReadReal(v, "q_prev", &q_prev_));
+    PetscCall(CheckpointReadReal(v, "q_now", &q_now_));
+    held_.assign(held.begin(), held.end());
+    steps_.assign(steps.begin(), steps.end());
+    collapsed_ = false; // a checkpoint is never written after a collapse
     PetscFunctionReturn(0);
   }
 

@@ -16,6 +16,7 @@
 // be rough enough to hold the sheet on the base, so the exact solution is the block sliding on a
 // fixed sheet, as above with mu the upper face's. The ends are free (-incline_chain_pin pins both,
 // as supports); results add the sheet's largest displacement.
+#include "pmpm/checkpoint.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
 #include <cmath>
@@ -113,6 +114,22 @@ public:
     // whose normal constraint locks the sliding. Friction acts on the base's upper face.
     // With the chain the bodies come from the chain's line and its normals: no colour.
     for (auto &q : out) q.colour = q.mat == 1 && !chain_ ? 1.0 : 0.0;
+    PetscFunctionReturn(0);
+  }
+
+  // checkpoint.hpp: the block's time history so far
+  PetscErrorCode checkpoint_write(Simulation &, PetscViewer v) override {
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointWriteArray(v, "history_t", t_));
+    PetscCall(CheckpointWriteArray(v, "history_v", v_));
+    PetscCall(CheckpointWriteArray(v, "history_s", s_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode checkpoint_read(Simulation &, PetscViewer v) override {
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointReadArray(v, "history_t", t_));
+    PetscCall(CheckpointReadArray(v, "history_v", v_));
+    PetscCall(CheckpointReadArray(v, "history_s", s_));
     PetscFunctionReturn(0);
   }
 

@@ -32,6 +32,7 @@
 // = m L (the whole sheet slides at full friction), with end_clearance_cells (the pulled end's
 // distance from the right face, in cells) to show the sheet stayed clear of the roller's nodes.
 // pullout_history.csv has the friction force and the pulled end's u_x after every step.
+#include "pmpm/checkpoint.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
 #include <cmath>
@@ -136,6 +137,30 @@ public:
     // one material; the bodies (below / above the sheet) are assigned from the chain's line
     FillRegular(
         sim, [](const double *) { return 0; }, out);
+    PetscFunctionReturn(0);
+  }
+
+  // checkpoint.hpp: the histories so far and the last step's slips
+  PetscErrorCode checkpoint_write(Simulation &, PetscViewer v) override {
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointWriteArray(v, "history_t", time_));
+    PetscCall(CheckpointWriteArray(v, "history_friction", fric_));
+    PetscCall(CheckpointWriteArray(v, "history_u_end", uend_));
+    PetscCall(CheckpointWriteArray(v, "history_sliding",
+                                   std::vector<double>(sliding_.begin(), sliding_.end())));
+    PetscCall(CheckpointWriteArray(v, "slip_previous", slip_prev_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode checkpoint_read(Simulation &, PetscViewer v) override {
+    std::vector<double> sl;
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointReadArray(v, "history_t", time_));
+    PetscCall(CheckpointReadArray(v, "history_friction", fric_));
+    PetscCall(CheckpointReadArray(v, "history_u_end", uend_));
+    PetscCall(CheckpointReadArray(v, "history_sliding", sl));
+    PetscCall(CheckpointReadArray(v, "slip_previous", slip_prev_));
+    sliding_.assign(sl.size(), 0);
+    for (size_t i = 0; i < sl.size(); ++i) sliding_[i] = sl[i] != 0;
     PetscFunctionReturn(0);
   }
 

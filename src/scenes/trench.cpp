@@ -43,6 +43,7 @@
 //     arc(y) = (B + u_L + u_R)(1 + T / J), T = p B Omega(y), with (d) the simulated pull-in,
 //     (e) the closed-form pull-in u = T^2 / (2 m J) per side (rigid soil, full friction on both
 //     faces), (f) the same with the simulated mobilised shear, (g) (e) under the overburden.
+#include "pmpm/checkpoint.hpp"
 #include "pmpm/giroud.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
@@ -254,6 +255,18 @@ public:
           return int(BASE);
         },
         out);
+    PetscFunctionReturn(0);
+  }
+
+  // checkpoint.hpp: the history rows so far
+  PetscErrorCode checkpoint_write(Simulation &, PetscViewer v) override {
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointWriteArray(v, "history", hist_));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode checkpoint_read(Simulation &, PetscViewer v) override {
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointReadArray(v, "history", hist_));
     PetscFunctionReturn(0);
   }
 

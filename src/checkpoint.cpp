@@ -1,0 +1,708 @@
+// Checkpoint and restart (checkpoint.hpp). File layout (PetscViewerHDF5):
+//   /run        attributes: format, the run's identity (scene, cell size, grid, particles at
+//               setup, chains), the stage loop's position and RunState; dataset budget_w_local
+//               (one entry per rank)
+//   /particles  counts (one entry per rank) and one dataset per swarm field, the ranks' blocks in
+//               rank order (integers stored as reals, exact)
+//   /chains/<k> every chain's evolving point and segment arrays, and its scalars as attributes
+//   /output     the time-series frames listed so far
+//   /scene      the scene's own state (Scene::checkpoint_write)
+#include "pmpm/checkpoint.hpp"
+#include "pmpm/output.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <petscviewerhdf5.h>
+
+namespace pmpm {
+
+namespace {
+constexpr const char *kFormat = "pmpm checkpoint 1";
+std::string g_reading = "the checkpoint"; // the file CheckpointRead is reading (messages)
+PetscLogEvent ev_write = 0, ev_read = 0;
+
+PetscErrorCode RegisterEvents() {
+  PetscFunctionBeginUser;
+  if (!ev_write) {
+    PetscClassId cls;
+    PetscCall(PetscClassIdRegister("pmpm checkpoint", &cls));
+    PetscCall(PetscLogEventRegister("CheckpointWrite", cls, &ev_write));
+    PetscCall(PetscLogEventRegister("CheckpointRead", cls, &ev_read));
+  }
+  PetscFunctionReturn(0);
+}
+
+// Attributes of an absolute group path.
+PetscErrorCode PutReal(PetscViewer v, const char *group, const char *name, double x) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5WriteAttribute(v, group, name, PETSC_REAL, &x));
+  PetscFunctionReturn(0);
+}
+PetscErrorCode PutInt(PetscViewer v, const char *group, const char *name, PetscInt x) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5WriteAttribute(v, group, name, PETSC_INT, &x));
+  PetscFunctionReturn(0);
+}
+PetscErrorCode PutString(PetscViewer v, const char *group, const char *name, const std::string &x) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5WriteAttribute(v, group, name, PETSC_STRING, x.c_str()));
+  PetscFunctionReturn(0);
+}
+// Reading: a missing attribute is a damaged checkpoint (the caller's file name in the message).
+PetscErrorCode Need(PetscViewer v, const char *group, const char *name, const std::string &file) {
+  PetscBool has = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasAttribute(v, group, name, &has));
+  PetscCheck(has, PetscObjectComm((PetscObject)v), PETSC_ERR_FILE_UNEXPECTED,
+             "-restart %s: not a complete pmpm checkpoint (%s/%s missing)", file.c_str(), group,
+             name);
+  PetscFunctionReturn(0);
+}
+PetscErrorCode GetReal(PetscViewer v, const char *group, const char *name, const std::string &file,
+                       double *x) {
+  PetscFunctionBeginUser;
+  PetscCall(Need(v, group, name, file));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, group, name, PETSC_REAL, nullptr, x));
+  PetscFunctionReturn(0);
+}
+PetscErrorCode GetInt(PetscViewer v, const char *group, const char *name, const std::string &file,
+                      PetscInt *x) {
+  PetscFunctionBeginUser;
+  PetscCall(Need(v, group, name, file));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, group, name, PETSC_INT, nullptr, x));
+  PetscFunctionReturn(0);
+}
+PetscErrorCode GetString(PetscViewer v, const char *group, const char *name,
+                         const std::string &file, std::string &x) {
+  char *s = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(Need(v, group, name, file));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, group, name, PETSC_STRING, nullptr, &s));
+  x = s ? s : "";
+  PetscCall(PetscFree(s));
+  PetscFunctionReturn(0);
+}
+
+// One value per rank as a dataset of the current group, and back: the whole array on every rank.
+PetscErrorCode WritePerRank(MPI_Comm comm, PetscViewer v, const char *name, double x) {
+  Vec a;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(comm, 1, PETSC_DETERMINE, &a));
+  PetscCall(PetscObjectSetName((PetscObject)a, name));
+  double *p;
+  PetscCall(VecGetArray(a, &p));
+  p[0] = x;
+  PetscCall(VecRestoreArray(a, &p));
+  PetscCall(VecView(a, v));
+  PetscCall(VecDestroy(&a));
+  PetscFunctionReturn(0);
+}
+
+// A dataset of the current group read whole onto every rank.
+PetscErrorCode ReadAll(MPI_Comm comm, PetscViewer v, const char *name, std::vector<double> &out) {
+  Vec a, all;
+  VecScatter sc;
+  const double *p;
+  PetscInt n;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreate(comm, &a));
+  PetscCall(PetscObjectSetName((PetscObject)a, name));
+  PetscCall(VecLoad(a, v));
+  PetscCall(VecScatterCreateToAll(a, &sc, &all));
+  PetscCall(VecScatterBegin(sc, a, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, a, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetLocalSize(all, &n));
+  PetscCall(VecGetArrayRead(all, &p));
+  out.assign(p, p + n);
+  PetscCall(VecRestoreArrayRead(all, &p));
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&a));
+  PetscFunctionReturn(0);
+}
+
+// Does the current group hold this dataset? (a clear message instead of PETSc's)
+PetscErrorCode NeedDataset(PetscViewer v, const char *name, const std::string &file) {
+  PetscBool has = PETSC_FALSE;
+  char *group = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5HasDataset(v, name, &has));
+  PetscCall(PetscViewerHDF5GetGroup(v, nullptr, &group));
+  const std::string g = group ? group : "";
+  PetscCall(PetscFree(group));
+  PetscCheck(has, PetscObjectComm((PetscObject)v), PETSC_ERR_FILE_UNEXPECTED,
+             "-restart %s: not a complete pmpm checkpoint (dataset %s/%s missing)", file.c_str(),
+             g.c_str(), name);
+  PetscFunctionReturn(0);
+}
+
+// The number of values in a dataset of the current group (collective: HDF5 metadata).
+PetscErrorCode DatasetSize(PetscViewer v, const char *name, PetscInt *n) {
+  hid_t fid, gid;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5OpenGroup(v, nullptr, &fid, &gid));
+  const hid_t d = H5Dopen2(gid, name, H5P_DEFAULT);
+  const hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
+  *n = sp >= 0 ? static_cast<PetscInt>(H5Sget_simple_extent_npoints(sp)) : -1;
+  if (sp >= 0) H5Sclose(sp);
+  if (d >= 0) H5Dclose(d);
+  H5Gclose(gid);
+  PetscFunctionReturn(0);
+}
+
+// The chains' evolving arrays (per point or per segment), by name.
+struct ChainArrays {
+  const char *name;
+  std::vector<double> Chain::*member;
+};
+const ChainArrays kChainArrays[] = {
+    {"x", &Chain::x},
+    {"x0", &Chain::x0},
+    {"v", &Chain::v},
+    {"f", &Chain::f},
+    {"length", &Chain::length},
+    {"l0", &Chain::l0},
+    {"eps", &Chain::eps},
+    {"eps_p", &Chain::eps_p},
+    {"alpha", &Chain::alpha},
+    {"T", &Chain::T},
+    {"slip_top", &Chain::slip_top},
+    {"slip_bot", &Chain::slip_bot},
+    {"p_top", &Chain::p_top},
+    {"p_bot", &Chain::p_bot},
+};
+
+std::string CheckpointName(const Simulation &sim) {
+  char name[64];
+  snprintf(name, sizeof(name), "checkpoint_%d.h5", (int)sim.run.step);
+  return name;
+}
+
+// Rank 0 looks at the file before PetscViewerHDF5 does (whose HDF5 error stack would be the
+// only message otherwise): it exists, is readable, is HDF5 whose end is where HDF5 recorded it
+// (a truncated file is not), and is a pmpm checkpoint. The verdict goes to every rank.
+PetscErrorCode CheckFile(MPI_Comm comm, PetscMPIInt rank, const std::string &file) {
+  char why[256] = "";
+  PetscFunctionBeginUser;
+  if (rank == 0) {
+    if (FILE *f = std::fopen(file.c_str(), "rb")) {
+      unsigned char sig[8] = {0};
+      const size_t got = std::fread(sig, 1, 8, f);
+      std::fclose(f);
+      const unsigned char h5[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+      if (got != 8 || std::memcmp(sig, h5, 8) != 0) {
+        snprintf(why, sizeof(why), "not an HDF5 file");
+      } else {
+        H5E_auto2_t fn;
+        void *data;
+        H5Eget_auto2(H5E_DEFAULT, &fn, &data);
+        H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // our message, not HDF5's error stack
+        const hid_t id = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+        if (id < 0) {
+          snprintf(why, sizeof(why), "an HDF5 file HDF5 cannot open (truncated or damaged)");
+        } else {
+          const htri_t ok = H5Aexists_by_name(id, "/run", "format", H5P_DEFAULT);
+          if (ok <= 0) snprintf(why, sizeof(why), "an HDF5 file but not a pmpm checkpoint");
+          H5Fclose(id);
+        }
+        H5Eset_auto2(H5E_DEFAULT, fn, data);
+      }
+    } else {
+      snprintf(why, sizeof(why), "cannot open the file (no such file, or not readable)");
+    }
+  }
+  PetscCallMPI(MPI_Bcast(why, sizeof(why), MPI_CHAR, 0, comm));
+  PetscCheck(!why[0], comm, PETSC_ERR_FILE_OPEN, "-restart %s: %s", file.c_str(), why);
+  PetscFunctionReturn(0);
+}
+
+// Particles read as blocks of another rank count go to the ranks owning their cells: records of
+// w values (the coordinates first), exchanged all-to-all in rank order.
+PetscErrorCode Redistribute(Simulation &sim, PetscInt w, std::vector<double> &rec) {
+  const Grid &g = sim.grid;
+  const int size = sim.size;
+  std::vector<PetscInt> box(4 * size);
+  PetscInt mine[4] = {g.cell_lo[0], g.cell_hi[0], g.cell_lo[1], g.cell_hi[1]};
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allgather(mine, 4, MPIU_INT, box.data(), 4, MPIU_INT, sim.comm));
+  const size_t n = rec.size() / w;
+  std::vector<int> dest(n), scount(size, 0), rcount(size), sdisp(size), rdisp(size);
+  for (size_t p = 0; p < n; ++p) {
+    PetscInt c[DIM];
+    for (int d = 0; d < DIM; ++d) {
+      c[d] = static_cast<PetscInt>((rec[p * w + d] - g.origin[d]) / g.h);
+      c[d] = std::min(std::max(c[d], (PetscInt)0), g.ncell[d] - 1);
+    }
+    int r = 0;
+    while (r < size && !(c[0] >= box[4 * r] && c[0] < box[4 * r + 1] && c[1] >= box[4 * r + 2] &&
+                         c[1] < box[4 * r + 3]))
+      ++r;
+    PetscCheck(r < size, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no rank owns cell (%d, %d)", (int)c[0],
+               (int)c[1]);
+    dest[p] = r;
+    scount[r] += static_cast<int>(w);
+  }
+  PetscCallMPI(MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, sim.comm));
+  int st = 0, rt = 0;
+  for (int r = 0; r < size; ++r) {
+    sdisp[r] = st;
+    rdisp[r] = rt;
+    st += scount[r];
+    rt += rcount[r];
+  }
+  std::vector<double> send(static_cast<size_t>(st)), recv(static_cast<size_t>(rt));
+  std::vector<int> at(sdisp);
+  for (size_t p = 0; p < n; ++p) {
+    std::copy(rec.begin() + p * w, rec.begin() + (p + 1) * w, send.begin() + at[dest[p]]);
+    at[dest[p]] += static_cast<int>(w);
+  }
+  PetscCallMPI(MPI_Alltoallv(send.data(), scount.data(), sdisp.data(), MPI_DOUBLE, recv.data(),
+                             rcount.data(), rdisp.data(), MPI_DOUBLE, sim.comm));
+  rec.swap(recv);
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode CheckpointWriteArray(PetscViewer v, const char *name, const std::vector<double> &a) {
+  Vec x;
+  MPI_Comm comm = PetscObjectComm((PetscObject)v);
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  // the length first, so an empty array is a dataset too
+  PetscInt n = static_cast<PetscInt>(a.size()) + 1;
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm)); // rank 0's array (others may hold none)
+  PetscCall(VecCreateMPI(comm, rank == 0 ? n : 0, n, &x));
+  PetscCall(PetscObjectSetName((PetscObject)x, name));
+  if (rank == 0) {
+    double *p;
+    PetscCall(VecGetArray(x, &p));
+    p[0] = static_cast<double>(a.size());
+    std::copy(a.begin(), a.end(), p + 1);
+    PetscCall(VecRestoreArray(x, &p));
+  }
+  PetscCall(VecView(x, v));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckpointReadArray(PetscViewer v, const char *name, std::vector<double> &a) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)v);
+  std::vector<double> all;
+  PetscFunctionBeginUser;
+  PetscCall(NeedDataset(v, name, g_reading));
+  PetscCall(ReadAll(comm, v, name, all));
+  PetscCheck(!all.empty() && all[0] == double(all.size() - 1), comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-restart %s: damaged checkpoint (array %s: its length does not match)",
+             g_reading.c_str(), name);
+  a.assign(all.begin() + 1, all.end());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckpointWriteReal(PetscViewer v, const char *name, double x) {
+  char *group = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5GetGroup(v, nullptr, &group));
+  PetscCall(PutReal(v, group, name, x));
+  PetscCall(PetscFree(group));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckpointReadReal(PetscViewer v, const char *name, double *x) {
+  char *group = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5GetGroup(v, nullptr, &group));
+  const std::string g = group ? group : "/";
+  PetscCall(PetscFree(group));
+  PetscCall(GetReal(v, g.c_str(), name, g_reading, x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
+  PetscViewer v;
+  const RunState &r = sim.run;
+  PetscFunctionBeginUser;
+  PetscCall(RegisterEvents());
+  PetscCall(PetscLogEventBegin(ev_write, 0, 0, 0, 0));
+  PetscCall(OutputPrepareDirectory(sim));
+  const std::string name = CheckpointName(sim), path = sim.set.output_dir + "/" + name;
+  PetscCall(PetscViewerHDF5Open(sim.comm, (path + ".tmp").c_str(), FILE_MODE_WRITE, &v));
+
+  // the run: identity, the stage loop's position, RunState
+  const char *R = "/run";
+  PetscCall(PutString(v, R, "format", kFormat));
+  PetscCall(PutString(v, R, "scene", sim.set.scene));
+  PetscCall(PutReal(v, R, "cell_size", sim.set.h));
+  PetscCall(PutInt(v, R, "ncell_x", sim.ncell[0]));
+  PetscCall(PutInt(v, R, "ncell_y", sim.ncell[1]));
+  PetscCall(PutInt(v, R, "particles_setup", sim.particles_setup));
+  PetscCall(PutInt(v, R, "chains", static_cast<PetscInt>(sim.chains.size())));
+  PetscCall(PutInt(v, R, "ranks", sim.size));
+  PetscCall(PutInt(v, R, "stage", in_stage ? sim.stage : sim.stage + 1));
+  PetscCall(PutInt(v, R, "in_stage", in_stage ? 1 : 0));
+  PetscCall(PutInt(v, R, "stage_ramp", sim.stage_ramp));
+  PetscCall(PutReal(v, R, "stage_shrink", sim.stage_shrink));
+  PetscCall(PutInt(v, R, "step", r.step));
+  PetscCall(PutInt(v, R, "stage_step", r.stage_step));
+  PetscCall(PutReal(v, R, "time", r.time));
+  PetscCall(PutReal(v, R, "dt", r.dt));
+  PetscCall(PutReal(v, R, "max_speed", r.max_speed));
+  PetscCall(PutReal(v, R, "ratio", r.ratio));
+  PetscCall(PutReal(v, R, "kinetic", r.kinetic));
+  PetscCall(PutReal(v, R, "kinetic_prev", r.kinetic_prev));
+  PetscCall(PutInt(v, R, "converged", r.converged ? 1 : 0));
+  PetscCall(PutInt(v, R, "all_converged", r.all_converged ? 1 : 0));
+  PetscCall(PutReal(v, R, "wall_seconds", r.wall_seconds));
+  PetscCall(PutReal(v, R, "stage_seconds", r.stage_seconds));
+  PetscCall(PutInt(v, R, "migrations", r.migrations));
+  PetscCall(PutInt(v, R, "kinetic_resets", r.kinetic_resets));
+  PetscCall(PutReal(v, R, "c0", r.c0));
+  PetscCall(PutReal(v, R, "ke_window", r.ke_window));
+  PetscCall(PutReal(v, R, "budget_e0", r.budget_e0));
+  PetscCall(PutReal(v, R, "budget_floor", r.budget_floor));
+  PetscCall(PutReal(v, R, "iface_impulse_compression", sim.iface_impulse[0]));
+  PetscCall(PutReal(v, R, "iface_impulse_tension", sim.iface_impulse[1]));
+  PetscCall(PutReal(v, R, "contact_impulse_compression", sim.contact_impulse[0]));
+  PetscCall(PutReal(v, R, "contact_impulse_tension", sim.contact_impulse[1]));
+  const InterfaceStats &is = sim.iface_stats;
+  const ContactStats &cs = sim.contact_stats;
+  PetscCall(PetscViewerHDF5PushGroup(v, R));
+  PetscCall(WritePerRank(sim.comm, v, "budget_w_local", r.budget_w_local));
+  PetscCall(CheckpointWriteArray(v, "iface_stats",
+                                 {is.contact_nodes, is.slip_nodes, is.compression, is.tension}));
+  std::vector<double> c = {cs.contact_nodes, cs.slip_nodes, cs.separated_nodes, cs.compression,
+                           cs.tension};
+  c.insert(c.end(), cs.friction.begin(), cs.friction.end());
+  PetscCall(CheckpointWriteArray(v, "contact_stats", c));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+
+  // particles: each field as the ranks' blocks in rank order, and the block sizes
+  PetscInt n;
+  PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/particles"));
+  PetscCall(WritePerRank(sim.comm, v, "counts", static_cast<double>(n)));
+  for (const ParticleFieldInfo &f : ParticlesFieldList()) {
+    void *data;
+    PetscInt bs;
+    PetscDataType type;
+    Vec x;
+    double *a;
+    PetscCall(DMSwarmGetField(sim.parts.sw, f.name, &bs, &type, &data));
+    PetscCall(VecCreateMPI(sim.comm, n * bs, PETSC_DETERMINE, &x));
+    PetscCall(PetscObjectSetName((PetscObject)x, f.name));
+    PetscCall(VecGetArray(x, &a));
+    for (PetscInt i = 0; i < n * bs; ++i)
+      a[i] = f.integer ? static_cast<double>(static_cast<PetscInt *>(data)[i])
+                       : static_cast<double *>(data)[i];
+    PetscCall(VecRestoreArray(x, &a));
+    PetscCall(DMSwarmRestoreField(sim.parts.sw, f.name, &bs, &type, &data));
+    PetscCall(VecView(x, v));
+    PetscCall(VecDestroy(&x));
+  }
+  PetscCall(PetscViewerHDF5PopGroup(v));
+
+  // chains (every rank holds them alike: rank 0's are written)
+  for (size_t k = 0; k < sim.chains.size(); ++k) {
+    const Chain &ch = sim.chains[k];
+    char g[32];
+    snprintf(g, sizeof(g), "/chains/%d", (int)k);
+    PetscCall(PutString(v, g, "name", ch.name));
+    PetscCall(PutInt(v, g, "points", ch.n));
+    PetscCall(PutInt(v, g, "top_type", static_cast<PetscInt>(ch.top.type)));
+    PetscCall(PutInt(v, g, "bottom_type", static_cast<PetscInt>(ch.bottom.type)));
+    PetscCall(PutReal(v, g, "top_mu", ch.top.mu));
+    PetscCall(PutReal(v, g, "bottom_mu", ch.bottom.mu));
+    PetscCall(PutReal(v, g, "line_mass", ch.line_mass));
+    PetscCall(PutReal(v, g, "friction_force", ch.friction_force));
+    PetscCall(PetscViewerHDF5PushGroup(v, g));
+    for (const ChainArrays &a : kChainArrays)
+      PetscCall(CheckpointWriteArray(v, a.name, ch.*(a.member)));
+    PetscCall(
+        CheckpointWriteArray(v, "slack", std::vector<double>(ch.slack.begin(), ch.slack.end())));
+    PetscCall(CheckpointWriteArray(
+        v, "reaction",
+        {ch.reaction[0][0], ch.reaction[0][1], ch.reaction[1][0], ch.reaction[1][1]}));
+    PetscCall(PetscViewerHDF5PopGroup(v));
+  }
+
+  // the time series listed so far (rank 0's list; one attribute per frame)
+  {
+    std::vector<std::string> &frames = OutputSeriesFrames();
+    PetscInt nf = sim.rank == 0 ? static_cast<PetscInt>(frames.size()) : 0;
+    PetscCallMPI(MPI_Bcast(&nf, 1, MPIU_INT, 0, sim.comm));
+    PetscCall(PutInt(v, "/output", "series_frames", nf));
+    for (PetscInt i = 0; i < nf; ++i) {
+      std::string s = sim.rank == 0 ? frames[i] : std::string();
+      int len = static_cast<int>(s.size());
+      PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, 0, sim.comm));
+      s.resize(static_cast<size_t>(len));
+      PetscCallMPI(MPI_Bcast(&s[0], len, MPI_CHAR, 0, sim.comm));
+      char a[32];
+      snprintf(a, sizeof(a), "frame_%d", (int)i);
+      PetscCall(PutString(v, "/output", a, s));
+    }
+  }
+
+  // the scene's own state
+  PetscCall(PutString(v, "/scene", "name", sim.set.scene));
+  PetscCall(PetscViewerHDF5PushGroup(v, "/scene"));
+  PetscCall(sim.scene->checkpoint_write(sim, v));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCallMPI(MPI_Barrier(sim.comm)); // every rank's part is on disk before the rename
+  PetscCall(OutputCommit(sim, name));
+  if (!sim.set.quiet)
+    PetscCall(PetscPrintf(sim.comm, "checkpoint %s (stage %d, step %d)\n", path.c_str(),
+                          (int)sim.stage, (int)sim.run.step));
+  PetscCall(PetscLogEventEnd(ev_write, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
+  PetscViewer v;
+  RunState &r = sim.run;
+  const char *F = file.c_str();
+  PetscFunctionBeginUser;
+  PetscCall(RegisterEvents());
+  PetscCall(PetscLogEventBegin(ev_read, 0, 0, 0, 0));
+  PetscCall(CheckFile(sim.comm, sim.rank, file));
+  g_reading = file;
+  PetscCall(PetscViewerHDF5Open(sim.comm, F, FILE_MODE_READ, &v));
+
+  // the same run? scene, cell size, grid, particles generated, chains
+  const char *R = "/run";
+  std::string fmt, scene;
+  double h;
+  PetscInt nx, ny, np0, nch, ranks;
+  PetscCall(GetString(v, R, "format", file, fmt));
+  PetscCheck(fmt == kFormat, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-restart %s: checkpoint format \"%s\", this pmpm reads \"%s\"", F, fmt.c_str(),
+             kFormat);
+  PetscCall(GetString(v, R, "scene", file, scene));
+  PetscCall(GetReal(v, R, "cell_size", file, &h));
+  PetscCall(GetInt(v, R, "ncell_x", file, &nx));
+  PetscCall(GetInt(v, R, "ncell_y", file, &ny));
+  PetscCall(GetInt(v, R, "particles_setup", file, &np0));
+  PetscCall(GetInt(v, R, "chains", file, &nch));
+  PetscCall(GetInt(v, R, "ranks", file, &ranks));
+  PetscCheck(scene == sim.set.scene, sim.comm, PETSC_ERR_USER_INPUT,
+             "-restart %s: the checkpoint is of scene %s, this run is scene %s (restart with the "
+             "options files of the run that wrote it)",
+             F, scene.c_str(), sim.set.scene.c_str());
+  PetscCheck(h == sim.set.h && nx == sim.ncell[0] && ny == sim.ncell[1], sim.comm,
+             PETSC_ERR_USER_INPUT,
+             "-restart %s: the checkpoint's grid is %d x %d cells of %g m, this run's %d x %d of "
+             "%g m (restart with the options files of the run that wrote it)",
+             F, (int)nx, (int)ny, h, (int)sim.ncell[0], (int)sim.ncell[1], sim.set.h);
+  PetscCheck(np0 == sim.particles_setup && nch == (PetscInt)sim.chains.size(), sim.comm,
+             PETSC_ERR_USER_INPUT,
+             "-restart %s: the checkpoint's run generated %d particles and %d chains, this one %d "
+             "and %d (restart with the options files of the run that wrote it)",
+             F, (int)np0, (int)nch, (int)sim.particles_setup, (int)sim.chains.size());
+  PetscInt stage, in_stage, conv, allc;
+  PetscCall(GetInt(v, R, "stage", file, &stage));
+  PetscCall(GetInt(v, R, "in_stage", file, &in_stage));
+  const PetscInt nstages = sim.scene->stages();
+  PetscCheck(stage >= 0 && stage <= nstages + 1, sim.comm, PETSC_ERR_USER_INPUT,
+             "-restart %s: the checkpoint is at stage %d, this run has stages 0..%d (restart with "
+             "the options files of the run that wrote it)",
+             F, (int)stage, (int)nstages);
+  PetscCall(GetInt(v, R, "stage_ramp", file, &sim.stage_ramp));
+  PetscCall(GetReal(v, R, "stage_shrink", file, &sim.stage_shrink));
+  PetscCall(GetInt(v, R, "step", file, &r.step));
+  PetscCall(GetInt(v, R, "stage_step", file, &r.stage_step));
+  PetscCall(GetReal(v, R, "time", file, &r.time));
+  PetscCall(GetReal(v, R, "dt", file, &r.dt));
+  PetscCall(GetReal(v, R, "max_speed", file, &r.max_speed));
+  PetscCall(GetReal(v, R, "ratio", file, &r.ratio));
+  PetscCall(GetReal(v, R, "kinetic", file, &r.kinetic));
+  PetscCall(GetReal(v, R, "kinetic_prev", file, &r.kinetic_prev));
+  PetscCall(GetInt(v, R, "converged", file, &conv));
+  PetscCall(GetInt(v, R, "all_converged", file, &allc));
+  r.converged = conv != 0;
+  r.all_converged = allc != 0;
+  PetscCall(GetReal(v, R, "wall_seconds", file, &r.wall_seconds));
+  PetscCall(GetReal(v, R, "stage_seconds", file, &r.stage_seconds));
+  PetscCall(GetInt(v, R, "migrations", file, &r.migrations));
+  PetscCall(GetInt(v, R, "kinetic_resets", file, &r.kinetic_resets));
+  PetscCall(GetReal(v, R, "c0", file, &r.c0));
+  PetscCall(GetReal(v, R, "ke_window", file, &r.ke_window));
+  PetscCall(GetReal(v, R, "budget_e0", file, &r.budget_e0));
+  PetscCall(GetReal(v, R, "budget_floor", file, &r.budget_floor));
+  PetscCall(GetReal(v, R, "iface_impulse_compression", file, &sim.iface_impulse[0]));
+  PetscCall(GetReal(v, R, "iface_impulse_tension", file, &sim.iface_impulse[1]));
+  PetscCall(GetReal(v, R, "contact_impulse_compression", file, &sim.contact_impulse[0]));
+  PetscCall(GetReal(v, R, "contact_impulse_tension", file, &sim.contact_impulse[1]));
+  PetscCall(PetscViewerHDF5PushGroup(v, R));
+  {
+    std::vector<double> w, is, cs;
+    PetscCall(NeedDataset(v, "budget_w_local", file));
+    PetscCall(ReadAll(sim.comm, v, "budget_w_local", w));
+    PetscCheck((PetscInt)w.size() == ranks, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+               "-restart %s: damaged checkpoint (/run/budget_w_local)", F);
+    // this rank's share of the loads' work on the same rank count; else all of it on rank 0
+    double sum = 0;
+    for (double x : w) sum += x;
+    r.budget_w_local = ranks == sim.size ? w[sim.rank] : (sim.rank == 0 ? sum : 0.0);
+    PetscCall(CheckpointReadArray(v, "iface_stats", is));
+    PetscCall(CheckpointReadArray(v, "contact_stats", cs));
+    PetscCheck(is.size() == 4 && cs.size() == 5 + sim.chains.size(), sim.comm,
+               PETSC_ERR_FILE_UNEXPECTED, "-restart %s: damaged checkpoint (/run stats)", F);
+    sim.iface_stats = InterfaceStats{is[0], is[1], is[2], is[3]};
+    ContactStats &c = sim.contact_stats;
+    c.contact_nodes = cs[0];
+    c.slip_nodes = cs[1];
+    c.separated_nodes = cs[2];
+    c.compression = cs[3];
+    c.tension = cs[4];
+    c.friction.assign(cs.begin() + 5, cs.end());
+  }
+  PetscCall(PetscViewerHDF5PopGroup(v));
+
+  // particles: this rank's own block on the same rank count (bit for bit), else an even split
+  // sent on to the ranks owning the particles' cells
+  PetscCall(PetscViewerHDF5PushGroup(v, "/particles"));
+  {
+    std::vector<double> counts;
+    PetscCall(NeedDataset(v, "counts", file));
+    PetscCall(ReadAll(sim.comm, v, "counts", counts));
+    PetscCheck((PetscInt)counts.size() == ranks, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+               "-restart %s: damaged checkpoint (/particles/counts)", F);
+    PetscInt total = 0;
+    for (double c : counts) total += static_cast<PetscInt>(c);
+    PetscInt nloc = 0;
+    if (ranks == sim.size)
+      nloc = static_cast<PetscInt>(counts[sim.rank]);
+    else
+      nloc = total / sim.size + (sim.rank < total % sim.size ? 1 : 0);
+    const std::vector<ParticleFieldInfo> fields = ParticlesFieldList();
+    PetscInt w = 0;
+    for (const auto &f : fields) w += f.bs;
+    std::vector<double> rec(static_cast<size_t>(nloc * w)); // records: every field of a particle
+    PetscInt off = 0;
+    for (const auto &f : fields) {
+      Vec x;
+      const double *a;
+      PetscInt N;
+      PetscCall(NeedDataset(v, f.name, file));
+      PetscCall(DatasetSize(v, f.name, &N));
+      PetscCheck(N == total * f.bs, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+                 "-restart %s: damaged checkpoint (/particles/%s holds %d values, its counts say "
+                 "%d particles of %d)",
+                 F, f.name, (int)N, (int)total, f.bs);
+      PetscCall(VecCreate(sim.comm, &x));
+      PetscCall(PetscObjectSetName((PetscObject)x, f.name));
+      PetscCall(VecSetSizes(x, nloc * f.bs, PETSC_DETERMINE));
+      PetscCall(VecSetType(x, VECSTANDARD));
+      PetscCall(VecLoad(x, v)); // PETSc checks the dataset's size against the counts
+      PetscCall(VecGetSize(x, &N));
+      PetscCheck(N == total * f.bs, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+                 "-restart %s: damaged checkpoint (/particles/%s)", F, f.name);
+      PetscCall(VecGetArrayRead(x, &a));
+      for (PetscInt p = 0; p < nloc; ++p)
+        for (PetscInt b = 0; b < f.bs; ++b) rec[p * w + off + b] = a[p * f.bs + b];
+      PetscCall(VecRestoreArrayRead(x, &a));
+      PetscCall(VecDestroy(&x));
+      off += f.bs;
+    }
+    if (ranks != sim.size) PetscCall(Redistribute(sim, w, rec));
+    nloc = static_cast<PetscInt>(rec.size()) / w;
+    PetscCall(DMSwarmSetLocalSizes(sim.parts.sw, nloc, 1000));
+    off = 0;
+    for (const auto &f : fields) {
+      void *data;
+      PetscInt bs;
+      PetscDataType type;
+      PetscCall(DMSwarmGetField(sim.parts.sw, f.name, &bs, &type, &data));
+      for (PetscInt p = 0; p < nloc; ++p)
+        for (PetscInt b = 0; b < f.bs; ++b) {
+          const double x = rec[p * w + off + b];
+          if (f.integer)
+            static_cast<PetscInt *>(data)[p * f.bs + b] = static_cast<PetscInt>(x);
+          else
+            static_cast<double *>(data)[p * f.bs + b] = x;
+        }
+      PetscCall(DMSwarmRestoreField(sim.parts.sw, f.name, &bs, &type, &data));
+      off += f.bs;
+    }
+    PetscCall(SimulationIndexParticles(sim));
+  }
+  PetscCall(PetscViewerHDF5PopGroup(v));
+
+  // chains
+  for (size_t k = 0; k < sim.chains.size(); ++k) {
+    Chain &ch = sim.chains[k];
+    char g[32];
+    std::string cname;
+    PetscInt npts, tt, bt;
+    snprintf(g, sizeof(g), "/chains/%d", (int)k);
+    PetscCall(GetString(v, g, "name", file, cname));
+    PetscCall(GetInt(v, g, "points", file, &npts));
+    PetscCheck(cname == ch.name && npts == ch.n, sim.comm, PETSC_ERR_USER_INPUT,
+               "-restart %s: the checkpoint's chain %d is %s with %d points, this run's %s with "
+               "%d (restart with the options files of the run that wrote it)",
+               F, (int)k, cname.c_str(), (int)npts, ch.name.c_str(), ch.n);
+    PetscCall(GetInt(v, g, "top_type", file, &tt));
+    PetscCall(GetInt(v, g, "bottom_type", file, &bt));
+    ch.top.type = static_cast<FaceType>(tt);
+    ch.bottom.type = static_cast<FaceType>(bt);
+    PetscCall(GetReal(v, g, "top_mu", file, &ch.top.mu));
+    PetscCall(GetReal(v, g, "bottom_mu", file, &ch.bottom.mu));
+    PetscCall(GetReal(v, g, "line_mass", file, &ch.line_mass));
+    PetscCall(GetReal(v, g, "friction_force", file, &ch.friction_force));
+    PetscCall(PetscViewerHDF5PushGroup(v, g));
+    for (const ChainArrays &a : kChainArrays) {
+      std::vector<double> &dst = ch.*(a.member);
+      std::vector<double> src;
+      PetscCall(CheckpointReadArray(v, a.name, src));
+      PetscCheck(src.size() == dst.size(), sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+                 "-restart %s: damaged checkpoint (chain %s, %s: %d values for %d)", F,
+                 ch.name.c_str(), a.name, (int)src.size(), (int)dst.size());
+      dst = src;
+    }
+    std::vector<double> slack, reac;
+    PetscCall(CheckpointReadArray(v, "slack", slack));
+    PetscCall(CheckpointReadArray(v, "reaction", reac));
+    PetscCheck(slack.size() == ch.slack.size() && reac.size() == 4, sim.comm,
+               PETSC_ERR_FILE_UNEXPECTED, "-restart %s: damaged checkpoint (chain %s)", F,
+               ch.name.c_str());
+    for (size_t i = 0; i < slack.size(); ++i) ch.slack[i] = slack[i] != 0;
+    for (int e = 0; e < 2; ++e)
+      for (int d = 0; d < DIM; ++d) ch.reaction[e][d] = reac[e * DIM + d];
+    PetscCall(PetscViewerHDF5PopGroup(v));
+  }
+
+  // the time-series frames listed so far
+  {
+    PetscInt nf;
+    PetscCall(GetInt(v, "/output", "series_frames", file, &nf));
+    std::vector<std::string> &frames = OutputSeriesFrames();
+    frames.clear();
+    for (PetscInt i = 0; i < nf; ++i) {
+      char a[32];
+      std::string s;
+      snprintf(a, sizeof(a), "frame_%d", (int)i);
+      PetscCall(GetString(v, "/output", a, file, s));
+      if (sim.rank == 0) frames.push_back(s);
+    }
+  }
+
+  // the scene's own state
+  PetscCall(PetscViewerHDF5PushGroup(v, "/scene"));
+  PetscCall(sim.scene->checkpoint_read(sim, v));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscCall(PetscViewerDestroy(&v));
+
+  sim.stage = stage;
+  sim.resume = true;
+  sim.resume_in_stage = in_stage != 0;
+  if (!sim.set.quiet)
+    PetscCall(PetscPrintf(sim.comm, "restart from %s: stage %d, step %d (written on %d rank%s)\n",
+                          F, (int)stage, (int)r.step, (int)ranks, ranks > 1 ? "s" : ""));
+  PetscCall(PetscLogEventEnd(ev_read, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+} // namespace pmpm
