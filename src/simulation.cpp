@@ -423,6 +423,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   sim.contact.tail_share = sim.iface.tail_share;
   for (int f = 0; f < 2 * DIM; ++f) sim.contact.face[f] = sim.face[f];
 
+  PetscCall(BalanceFromOptions(sim.comm, sim.balance));
   PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody, nchain * ChainDof::NDOF,
                        sim.grid));
   if (sim.iface.type != InterfaceType::Bonded && nchain == 0)
@@ -430,6 +431,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(ParticlesCreate(sim.grid, sim.parts));
   std::vector<ParticleInit> init;
   PetscCall(sim.scene->generate(sim, init));
+  PetscCall(BalanceSetup(sim, init)); // may recreate the grid and generate init again
   PetscCall(ApplyFaceTractions(sim, init));
   if (nchain > 0) AssignBodies(sim, init);
   // The PMPM support spans at most two cells per direction: 0 < l <= h/2.
