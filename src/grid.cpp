@@ -3,7 +3,8 @@
 namespace pmpm {
 
 PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[DIM],
-                          const PetscInt ncell[DIM], int nbody, int extra, Grid &g) {
+                          const PetscInt ncell[DIM], int nbody, int extra, Grid &g, PetscInt px,
+                          PetscInt py, const PetscInt *lx, const PetscInt *ly) {
   PetscFunctionBeginUser;
   g.h = h;
   g.nbody = nbody;
@@ -15,8 +16,7 @@ PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[DIM],
   // GHOSTED boundaries give every rank two ghost layers outside the box too, so a particle at the
   // box face can write its (zero-weight) outer stencil nodes without a bounds test.
   PetscCall(DMDACreate2d(comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX,
-                         ncell[0] + 1, ncell[1] + 1, PETSC_DECIDE, PETSC_DECIDE, g.nd, 2, nullptr,
-                         nullptr, &g.da));
+                         ncell[0] + 1, ncell[1] + 1, px, py, g.nd, 2, lx, ly, &g.da));
   PetscCall(DMSetFromOptions(g.da));
   PetscCall(DMSetUp(g.da));
   PetscCall(DMDASetUniformCoordinates(g.da, origin[0], origin[0] + ncell[0] * h, origin[1],

@@ -1,4 +1,5 @@
 #include "pmpm/output.hpp"
+#include "pmpm/balance.hpp"
 #include <cmath>
 #include <cstdio>
 #include <petscviewerhdf5.h>
@@ -215,6 +216,8 @@ PetscErrorCode OutputSummary(Simulation &sim, const std::string &results) {
   PetscInt n;
   PetscFunctionBeginUser;
   PetscCall(ParticlesGlobalCount(sim.parts, &n));
+  std::string partition;
+  PetscCall(PartitionJson(sim, partition));
   if (sim.rank == 0) {
     const std::string path = sim.set.output_dir + "/summary.json";
     FILE *f = std::fopen((path + ".tmp").c_str(), "w");
@@ -239,14 +242,14 @@ PetscErrorCode OutputSummary(Simulation &sim, const std::string &results) {
                  "  \"cells\": [%d, %d],\n  %s,\n  \"ppc\": %d,\n  \"shape\": \"%s\",\n"
                  "  \"cfl\": %s,\n  \"steps\": %d,\n  \"time\": %s,\n  %s,\n"
                  "  \"converged\": %s,\n  %s,\n  \"tolerance\": %s,\n  \"migrations\": %d,\n"
-                 "  %s\"results\": {\n    %s\n  }\n}\n",
+                 "  %s,\n  %s\"results\": {\n    %s\n  }\n}\n",
                  s.scene.c_str(), sim.size, (int)n, (int)sim.ncell[0], (int)sim.ncell[1],
                  json_kv("h", s.h).c_str(), (int)s.ppc, ShapeKindNames[(int)s.shape],
                  json_num(s.cfl).c_str(), (int)sim.run.step, json_num(sim.run.time).c_str(),
                  json_kv("wall_seconds", sim.run.wall_seconds).c_str(),
                  sim.run.converged ? "true" : "false",
                  json_kv("unbalanced_force_ratio", sim.run.ratio).c_str(), json_num(s.tol).c_str(),
-                 (int)sim.run.migrations, iface.c_str(), results.c_str());
+                 (int)sim.run.migrations, partition.c_str(), iface.c_str(), results.c_str());
     std::fclose(f);
   }
   PetscCall(OutputCommit(sim, "summary.json"));

@@ -3,6 +3,7 @@
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/materials/elastic.hpp"
 #include "pmpm/materials/von_mises.hpp"
+#include "pmpm/prerun.hpp"
 #include <limits>
 #include <cmath>
 #include <cstdio>
@@ -329,6 +330,11 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
   PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
   PetscCall(SettingsFromOptions(sim.comm, sim.set));
+  PetscBool help = PETSC_FALSE; // -help lists the options and runs nothing: nothing to check
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  if (!help) PetscCall(CheckOutputDir(sim.comm, sim.set.output_dir));
+  MemoryCheck mem;
+  PetscCall(MemoryFromOptions(sim.comm, mem));
   sim.scene = make_scene(sim.set.scene);
   PetscCheck(sim.scene, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-scene %s is unknown; allowed: bar, column, landfill, incline, layers, block, "
@@ -450,13 +456,19 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   sim.contact.tail_share = sim.iface.tail_share;
   for (int f = 0; f < 2 * DIM; ++f) sim.contact.face[f] = sim.face[f];
 
+  PetscCall(BalanceFromOptions(sim.comm, sim.balance));
+  const bool iface = sim.iface.type != InterfaceType::Bonded && nchain == 0;
+  PetscCall(CheckProcessGrid(sim));
+  if (!help)
+    PetscCall(CheckMemoryGrid(sim, mem, nbody * GridDof::NDOF + nchain * ChainDof::NDOF, iface));
   PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody, nchain * ChainDof::NDOF,
                        sim.grid));
-  if (sim.iface.type != InterfaceType::Bonded && nchain == 0)
-    PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
+  if (iface) PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
   PetscCall(ParticlesCreate(sim.grid, sim.parts));
   std::vector<ParticleInit> init;
   PetscCall(sim.scene->generate(sim, init));
+  PetscCall(BalanceSetup(sim, init)); // may recreate the grid and generate init again
+  if (!help) PetscCall(CheckMemoryParticles(sim, mem, (PetscInt)init.size()));
   PetscCall(ApplyFaceTractions(sim, init));
   if (nchain > 0) AssignBodies(sim, init);
   // The PMPM support spans at most two cells per direction: 0 < l <= h/2.

@@ -65,6 +65,20 @@ cases = [
                                               "-cover_surface", "0,5,50,8"], "-cover_surface"),
     ("negative checkpoint interval", ["-options_file", "options/bar.opts", "-checkpoint_every",
                                       "-1"], "-checkpoint_every"),
+    ("cell size needing more memory than the machine has",
+     ["-options_file", "options/bar.opts", "-cell_size", "1e-5"], "-cell_size"),
+    # the grid fits in 0.06 GiB, its 75,000 particles do not: the check after generation
+    ("particles needing more than -memory_limit", ["-options_file", "options/landfill.opts",
+                                                   "-cell_size", "0.00025", "-memory_limit",
+                                                   "0.06"], "-memory_limit"),
+    ("negative memory limit", ["-options_file", "options/bar.opts", "-memory_limit", "-1"],
+     "-memory_limit"),
+    ("process grid finer than the grid", ["-options_file", "options/bar.opts",
+                                          "-da_processors_y", "100"], "-da_processors_y"),
+    ("unknown balance mode", ["-options_file", "options/bar.opts", "-balance", "metis"],
+     "-balance"),
+    ("balance gain out of range", ["-options_file", "options/bar.opts", "-balance_gain", "1"],
+     "-balance_gain"),
     ("misspelled option", ["-options_file", "options/bar.opts", "-cell_sise", "0.001"],
      "-cell_sise"),
     ("an option of another material model", ["-options_file", "options/bar.opts",
@@ -77,6 +91,23 @@ for what, args, needle in cases:
     c.check(f"{what}: non-zero exit", code != 0, f"(exit {code})")
     c.check(f"{what}: message names {needle}", bool(msg), f"[{msg.strip()[:110]}]")
     c.check(f"{what}: no output written", not os.path.exists(d))
+
+# -output_dir that cannot be used: checked before the run (one line naming -output_dir and the
+# path), not after it in HDF5. Each is passed as the run's output directory.
+os.makedirs(out, exist_ok=True)
+afile = f"{out}/a_file"
+with open(afile, "w") as f:
+    f.write("not a directory\n")
+for what, path in [("an existing file", afile), ("a path under a file", f"{afile}/sub/run"),
+                   ("a directory that cannot be created", "/proc/pmpm_no_such_dir/run")]:
+    code, text = run(exe, 1, ["-options_file", "options/bar.opts"], path, expect_ok=False)
+    lines = [l for l in text.splitlines() if l.startswith("pmpm: error")]
+    c.check(f"-output_dir {what}: non-zero exit", code != 0, f"(exit {code})")
+    c.check(f"-output_dir {what}: one line naming -output_dir and the path",
+            len(lines) == 1 and "-output_dir" in lines[0] and path in lines[0],
+            f"[{lines[0][:110] if lines else ''}]")
+    c.check(f"-output_dir {what}: nothing written", os.path.isfile(afile) and
+            open(afile).read() == "not a directory\n" and not os.path.exists(f"{afile}/sub"))
 
 # On 2 ranks an error every rank meets is printed once (rank 0), without a rank number.
 d = f"{out}/two_ranks"

@@ -55,9 +55,13 @@ struct Grid {
 };
 
 // Create the DMDA: ncell cells of size h from origin; stencil width 2 (uGIMP support);
-// nbody blocks of NDOF values per node followed by extra values.
+// nbody blocks of NDOF values per node followed by extra values. The partition is PETSc's (or
+// -da_processors_x/y) unless px x py ranks with lx, ly nodes per rank column and row are given
+// (balance.hpp).
 PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[DIM],
-                          const PetscInt ncell[DIM], int nbody, int extra, Grid &g);
+                          const PetscInt ncell[DIM], int nbody, int extra, Grid &g,
+                          PetscInt px = PETSC_DECIDE, PetscInt py = PETSC_DECIDE,
+                          const PetscInt *lx = nullptr, const PetscInt *ly = nullptr);
 PetscErrorCode GridDestroy(Grid &g);
 // Zero the local vector and hand out a writable view of it (restore with GridRestoreLocal).
 PetscErrorCode GridGetLocal(Grid &g, bool zero, GridView &v);

@@ -1,6 +1,7 @@
 // Everything one run holds: settings from the options database, the grid, the particles, the
 // materials, the loads and boundary conditions, and the state of the relaxation.
 #pragma once
+#include "pmpm/balance.hpp"
 #include "pmpm/chain.hpp"
 #include "pmpm/degradation.hpp"
 #include "pmpm/grid.hpp"
@@ -135,6 +136,7 @@ struct Simulation {
   double chain_spacing = 0.25;        // -chain_spacing: point spacing in cells
 
   Grid grid;
+  Balance balance; // -balance: the partition by particle counts (balance.hpp)
   Particles parts;
   InterfaceParams iface;                 // -interface_type, -interface_mu_top/bottom
   InterfaceGrid iface_grid;              // body 1's field, only when an interface is on
