@@ -3,7 +3,10 @@
 to slide on the sheet, found by bisection, beside the infinite-slope and Koerner-Soong values.
 
     /usr/bin/python3 bench/cover_veneer.py          # ~5 min on 2 cores; writes
-                                                    # bench/out/cover_veneer/VENEER.md
+                                                    # bench/out/cover_veneer/VENEER.md and its
+                                                    # section of BENCHMARKS.md
+    /usr/bin/python3 bench/cover_veneer.py --cohesion 0   # the cohesionless cover (Koerner-Soong's
+                                                          # assumption; tests/test_cover_veneer.py)
     /usr/bin/python3 bench/cover_veneer.py --quick  # three angles, no bisection
 
 options/cover_slope.opts without its degradation stages (stage 0 only: the veneer under its own
@@ -29,15 +32,17 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 import closed_forms as cf  # noqa: E402
+from benchmarks_md import replace_section  # noqa: E402
 
 OUT = ROOT / "bench" / "out" / "cover_veneer"
 ENV = dict(os.environ, OMPI_MCA_rmaps_base_oversubscribe="1")
 if os.geteuid() == 0:
     ENV.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 SLIP_LIMIT = 0.05  # m
+MARK_BEGIN, MARK_END = "<!-- cover_veneer.py begin -->", "<!-- cover_veneer.py end -->"
 
 
-def holds(delta, h, np_):
+def holds(delta, h, np_, cohesion):
     d = OUT / f"delta_{delta:.3f}_h{h}"
     if d.is_dir():
         shutil.rmtree(d)
@@ -45,6 +50,8 @@ def holds(delta, h, np_):
            "options/cover_slope.opts", "-cover_shrink_total", "0", "-cover_shrink_stages", "0",
            "-cell_size", str(h), "-chain_hdpe_delta_top", str(delta),
            "-chain_hdpe_delta_bottom", "40", "-max_steps", "8000", "-output_dir", str(d), "-quiet"]
+    if cohesion is not None:
+        cmd += ["-mat_soil_cohesion", str(cohesion)]
     p = subprocess.run(cmd, env=ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True)
     if p.returncode != 0:
@@ -66,6 +73,8 @@ def main():
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--h", type=float, default=0.5)
     ap.add_argument("--np", type=int, default=2)
+    ap.add_argument("--cohesion", type=float, default=None,
+                    help="cover soil cohesion (Pa) in place of the example's 2 kPa")
     a = ap.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
     beta, L, phi, gamma = 18.435, 30.0, 32.0, 18e3
@@ -82,13 +91,13 @@ def main():
     rows = []
     if a.quick:
         for d in (delta_ks - 4, beta + 2):
-            ok, _ = holds(d, a.h, a.np)
+            ok, _ = holds(d, a.h, a.np, a.cohesion)
             rows.append((d, ok))
         thr = float("nan")
     else:
         lo, hi = delta_ks - 6, beta + 3  # expected: slides at lo, holds at hi
-        ok_lo, _ = holds(lo, a.h, a.np)
-        ok_hi, _ = holds(hi, a.h, a.np)
+        ok_lo, _ = holds(lo, a.h, a.np, a.cohesion)
+        ok_hi, _ = holds(hi, a.h, a.np, a.cohesion)
         rows += [(lo, ok_lo), (hi, ok_hi)]
         if ok_lo or not ok_hi:
             thr = float("nan")
@@ -96,13 +105,14 @@ def main():
         else:
             while hi - lo > 0.25:
                 mid = 0.5 * (lo + hi)
-                ok, _ = holds(mid, a.h, a.np)
+                ok, _ = holds(mid, a.h, a.np, a.cohesion)
                 rows.append((mid, ok))
                 lo, hi = (lo, mid) if ok else (mid, hi)
             thr = 0.5 * (lo + hi)
-    md = ["## Veneer on the slope example (bench/cover_veneer.py)", "",
+    c_text = "c 2 kPa" if a.cohesion is None else f"c {a.cohesion / 1e3:g} kPa"
+    md = [MARK_BEGIN, "## Veneer on the slope example (bench/cover_veneer.py)", "",
           f"options/cover_slope.opts, stage 0 only, h = {a.h} m, {a.np} ranks; the cover "
-          f"(0.6 m vertical, {h_normal:.3f} m normal, phi {phi} deg, c 2 kPa) on the sheet, "
+          f"(0.6 m vertical, {h_normal:.3f} m normal, phi {phi} deg, {c_text}) on the sheet, "
           f"slope {beta} deg over {L} m with a toe on level ground. Holds: stage 0 converges "
           f"with the slip on the sheet below {SLIP_LIMIT * 100:.0f} cm.", "",
           "| delta (deg) | pmpm |", "|---|---|"]
@@ -113,10 +123,12 @@ def main():
            f"- pmpm: threshold {thr:.2f} deg" + ("" if math.isnan(thr) else
                                                   f" ({thr - delta_ks:+.2f} deg from Koerner-Soong,"
                                                   f" {thr - beta:+.2f} deg from the infinite slope)"),
-           ""]
+           "", MARK_END]
     text = "\n".join(md)
     (OUT / "VENEER.md").write_text(text)
     print(text)
+    if not a.quick and a.cohesion is None:
+        replace_section(text, MARK_BEGIN, MARK_END)
 
 
 if __name__ == "__main__":
