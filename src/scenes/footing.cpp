@@ -5,8 +5,9 @@
 // Half the problem by symmetry: soil of half-width W and depth D, x = 0 the footing's centre line
 // (roller), far side on rollers, base fixed. The footing is a uniform pressure q on the surface
 // over 0 <= x < B/2 (a smooth, flexible strip: Prandtl's mechanism and limit load hold for it as
-// for a smooth rigid one). Stage k loads q_k of -footing_pressures; a stage that reaches its step
-// cap without equilibrium has collapsed, and the run stops there.
+// for a smooth rigid one). Stage k loads q_k of -footing_pressures; a stage that settles past
+// -footing_collapse_settlement x B, or reaches its step cap, before it finds equilibrium has
+// collapsed, and the run stops there.
 //
 // Exact limit loads for a weightless half-space: von Mises in plane strain (Tresca with
 // k = sigma_y / sqrt(3)) q_u = (2 + pi) k (Prandtl 1920); Drucker-Prager matched to Mohr-Coulomb
@@ -15,7 +16,8 @@
 // N_q = e^(pi tan phi) tan^2(45 + phi/2) (Prandtl-Reissner).
 //
 // Linear cells lock under isochoric plastic flow: without -fbar the soil holds pressures above
-// q_u (tests/test_footing.py shows by how much).
+// q_u (tests/test_footing.py shows by how much). With strongly dilatant Drucker-Prager F-bar is not
+// verified (README, "Anti-locking").
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/materials/von_mises.hpp"
@@ -33,7 +35,7 @@ class FootingScene final : public Scene {
   std::vector<double> q_; // stage pressures (Pa)
   PetscInt ramp_ = 0;     // steps over which a later stage raises the pressure
   double collapse_ = 0.2; // settlement (in B) past which a stage has collapsed
-  // per stage: pressure, held (equilibrium), settlement of the footing's centre, steps
+  // per stage: pressure, held (equilibrium), settlement (mean of the loaded particles), steps
   std::vector<double> held_q_, settle_;
   std::vector<int> held_;
   std::vector<PetscInt> steps_;
