@@ -27,12 +27,9 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "bench"))
-from benchmarks_md import replace_section  # noqa: E402
+from benchmarks_md import MPI_ENV, publish  # noqa: E402
 
 OUT = ROOT / "bench" / "out" / "balance"
-ENV = dict(os.environ, OMPI_MCA_rmaps_base_oversubscribe="1")
-if os.geteuid() == 0:
-    ENV.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 MARK_BEGIN, MARK_END = "<!-- balance.py begin -->", "<!-- balance.py end -->"
 
 # name -> (options file, extra options, steps per stage (full, quick))
@@ -55,7 +52,7 @@ def run(case, steps, np_, more, balance, tag):
         (["-max_steps", str(steps), "-tol", "1e-300"] if steps else []) + \
         ["-balance", balance] + more + \
         ["-output_dir", str(d.relative_to(ROOT)), "-quiet"]
-    p = subprocess.run(cmd, env=ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True)
     if p.returncode != 0:
         print(p.stdout[-2000:])
@@ -148,10 +145,7 @@ def main():
     lines += ["", "<details><summary>Commands</summary>", "", "```"] + \
         sorted(set(commands)) + ["```", "</details>", MARK_END]
     text = "\n".join(lines) + "\n"
-    (OUT / "BALANCE.md").write_text(text)
-    print(text)
-    if not a.quick:
-        replace_section(text, MARK_BEGIN, MARK_END)
+    publish(text, OUT / "BALANCE.md", MARK_BEGIN, MARK_END, not a.quick)
 
 
 if __name__ == "__main__":

@@ -22,14 +22,11 @@ import subprocess
 import time
 from pathlib import Path
 
-from benchmarks_md import replace_section
+from benchmarks_md import MPI_ENV, publish
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "bench" / "out" / "chains"
 BASE_REV = "8d3e17d"  # the last commit with one velocity field per node and no chains
-ENV = dict(os.environ)
-if os.geteuid() == 0:
-    ENV.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 MARK_BEGIN, MARK_END = "<!-- chains.py begin -->", "<!-- chains.py end -->"
 
 
@@ -40,7 +37,7 @@ def run(exe, np_, args, out, timeout=3600):
     cmd = ["mpiexec", "-n", str(np_), str(exe)] + [str(a) for a in args] + \
           ["-output_dir", str(out), "-quiet"]
     t0 = time.time()
-    p = subprocess.run(cmd, env=ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True, timeout=timeout)
     if p.returncode != 0:
         print(f"  failed: {' '.join(cmd)}\n{p.stdout[-2000:]}")
@@ -196,10 +193,7 @@ def main():
            "soft zone E / 10); the sheet's inertia is scaled to the continuum's wave speed, so "
            "its stiffness does not set the step.", "", stiff_sheet(exe, a.quick), MARK_END]
     text = "\n".join(md) + "\n"
-    (OUT / "CHAINS.md").write_text(text)
-    print(text)
-    if not a.quick:
-        replace_section(text, MARK_BEGIN, MARK_END)
+    publish(text, OUT / "CHAINS.md", MARK_BEGIN, MARK_END, not a.quick)
 
 
 if __name__ == "__main__":

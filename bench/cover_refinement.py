@@ -18,19 +18,15 @@ holds at a mesh when the change from it to the next finer one is within 5 %.
 import argparse
 import csv
 import json
-import os
 import shutil
 import subprocess
 import time
 from pathlib import Path
 
-from benchmarks_md import replace_section
+from benchmarks_md import MPI_ENV, publish
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "bench" / "out" / "cover_refinement"
-ENV = dict(os.environ, OMPI_MCA_rmaps_base_oversubscribe="1")
-if os.geteuid() == 0:
-    ENV.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 MARK_BEGIN, MARK_END = "<!-- cover_refinement.py begin -->", "<!-- cover_refinement.py end -->"
 
 # example: (options file, cell sizes coarse to fine, gauge length m)
@@ -48,7 +44,7 @@ def run(np_, args, out, timeout=7200):
     cmd = ["mpiexec", "-n", str(np_), str(ROOT / "build" / "pmpm")] + [str(a) for a in args] + \
           ["-output_dir", str(out), "-quiet"]
     t0 = time.time()
-    p = subprocess.run(cmd, env=ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True, timeout=timeout)
     if p.returncode != 0:
         print(f"  failed: {' '.join(cmd)}\n{p.stdout[-2000:]}")
@@ -109,10 +105,7 @@ def main():
         md += study(n, a.quick)
     md.append(MARK_END)
     text = "\n".join(md) + "\n"
-    (OUT / "COVER_REFINEMENT.md").write_text(text)
-    print(text)
-    if not a.quick and not a.only:
-        replace_section(text, MARK_BEGIN, MARK_END)
+    publish(text, OUT / "COVER_REFINEMENT.md", MARK_BEGIN, MARK_END, not a.quick and not a.only)
 
 
 if __name__ == "__main__":

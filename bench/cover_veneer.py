@@ -23,7 +23,6 @@ import argparse
 import csv
 import json
 import math
-import os
 import shutil
 import subprocess
 import sys
@@ -32,12 +31,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 import closed_forms as cf  # noqa: E402
-from benchmarks_md import replace_section  # noqa: E402
+from benchmarks_md import MPI_ENV, publish  # noqa: E402
 
 OUT = ROOT / "bench" / "out" / "cover_veneer"
-ENV = dict(os.environ, OMPI_MCA_rmaps_base_oversubscribe="1")
-if os.geteuid() == 0:
-    ENV.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 SLIP_LIMIT = 0.05  # m
 MARK_BEGIN, MARK_END = "<!-- cover_veneer.py begin -->", "<!-- cover_veneer.py end -->"
 
@@ -52,7 +48,7 @@ def holds(delta, h, np_, cohesion):
            "-chain_hdpe_delta_bottom", "40", "-max_steps", "8000", "-output_dir", str(d), "-quiet"]
     if cohesion is not None:
         cmd += ["-mat_soil_cohesion", str(cohesion)]
-    p = subprocess.run(cmd, env=ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True)
     if p.returncode != 0:
         print(p.stdout[-1500:])
@@ -125,10 +121,7 @@ def main():
                                                   f" {thr - beta:+.2f} deg from the infinite slope)"),
            "", MARK_END]
     text = "\n".join(md)
-    (OUT / "VENEER.md").write_text(text)
-    print(text)
-    if not a.quick and a.cohesion is None:
-        replace_section(text, MARK_BEGIN, MARK_END)
+    publish(text, OUT / "VENEER.md", MARK_BEGIN, MARK_END, not a.quick and a.cohesion is None)
 
 
 if __name__ == "__main__":
