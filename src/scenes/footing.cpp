@@ -40,7 +40,7 @@ class FootingScene final : public Scene {
   std::vector<int> held_;
   std::vector<PetscInt> steps_;
   bool collapsed_ = false;
-  double q_now_ = 0, q_prev_ = 0;
+  double q_prev_ = 0; // the previous stage's pressure: where this stage's ramp starts
 
   // The pressure the traction field carries now: set every loaded particle's traction to q times
   // its face length (its block's width).
@@ -50,7 +50,6 @@ class FootingScene final : public Scene {
     PetscCall(ParticlesGetView(sim.parts, P));
     for (const PetscInt p : sim.traction_idx) P.traction[p * DIM + 1] = -q * 2.0 * P.lp[p * DIM];
     PetscCall(ParticlesRestoreView(sim.parts, P));
-    q_now_ = q;
     PetscFunctionReturn(0);
   }
 
@@ -167,16 +166,16 @@ public:
     PetscFunctionBeginUser;
     sim.stage_ramp = ramp_; // no convergence before the new pressure is fully on
     q_prev_ = k == 0 ? 0 : q_[k - 1];
-    q_now_ = q_[k];
     PetscFunctionReturn(0);
   }
 
-  // Later stages raise the pressure linearly over the stage ramp; a footing that has sunk past
+  // Later stages raise the pressure linearly over the stage ramp (the traction field keeps it
+  // after that, and a checkpoint keeps the field); a footing that has sunk past
   // the collapse settlement ends its stage (checked every 50 steps: one reduction).
   PetscErrorCode monitor(Simulation &sim) override {
     PetscFunctionBeginUser;
     const PetscInt k = sim.run.stage_step;
-    if (sim.stage > 0 && k >= 1) {
+    if (sim.stage > 0 && k >= 1 && k <= std::max<PetscInt>(ramp_, 1)) {
       const double r = ramp_ > 0 ? std::fmin(1.0, double(k) / ramp_) : 1.0;
       PetscCall(set_pressure(sim, q_prev_ + r * (q_[sim.stage] - q_prev_)));
     }
@@ -212,7 +211,6 @@ public:
     PetscCall(CheckpointWriteArray(v, "settlement", settle_));
     PetscCall(CheckpointWriteArray(v, "steps", steps));
     PetscCall(CheckpointWriteReal(v, "q_prev", q_prev_));
-    PetscCall(CheckpointWriteReal(v, "q_now", q_now_));
     PetscFunctionReturn(0);
   }
   PetscErrorCode checkpoint_read(Simulation &, PetscViewer v) override {
@@ -223,7 +221,6 @@ public:
     PetscCall(CheckpointReadArray(v, "settlement", settle_));
     PetscCall(CheckpointReadArray(v, "steps", steps));
     PetscCall(CheckpointReadReal(v, "q_prev", &q_prev_));
-    PetscCall(CheckpointReadReal(v, "q_now", &q_now_));
     held_.assign(held.begin(), held.end());
     steps_.assign(steps.begin(), steps.end());
     collapsed_ = false; // a checkpoint is never written after a collapse
