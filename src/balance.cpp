@@ -108,7 +108,7 @@ PetscErrorCode BalanceFromOptions(MPI_Comm comm, Balance &b) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode BalanceSetup(Simulation &sim, std::vector<ParticleInit> &init) {
+PetscErrorCode BalanceSetup(Simulation &sim, ParticleList &init) {
   Balance &b = sim.balance;
   PetscInt px, py;
   PetscFunctionBeginUser;

@@ -18,7 +18,7 @@
 namespace pmpm {
 
 namespace {
-constexpr const char *kFormat = "pmpm checkpoint 1";
+constexpr const char *kFormat = "pmpm checkpoint 2";
 std::string g_reading = "the checkpoint"; // the file CheckpointRead is reading (messages)
 PetscLogEvent ev_write = 0, ev_read = 0;
 
@@ -375,6 +375,11 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
                            cs.tension};
   c.insert(c.end(), cs.friction.begin(), cs.friction.end());
   PetscCall(CheckpointWriteArray(v, "contact_stats", c));
+  // the surface loads (every rank holds them alike; a scene may have changed them)
+  std::vector<double> loads;
+  for (const ParticleLoad &L : sim.loads)
+    for (const double *a : {L.traction, L.tface, L.lp}) loads.insert(loads.end(), a, a + DIM);
+  PetscCall(CheckpointWriteArray(v, "loads", loads));
   PetscCall(PetscViewerHDF5PopGroup(v));
 
   // particles: each field as the ranks' blocks in rank order, and the block sizes
@@ -387,18 +392,21 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
     PetscInt bs;
     PetscDataType type;
     Vec x;
-    double *a;
     PetscCall(DMSwarmGetField(sim.parts.sw, f.name, &bs, &type, &data));
-    PetscCall(VecCreateMPI(sim.comm, n * bs, PETSC_DETERMINE, &x));
+    // real fields are written from the swarm's own arrays; integers through the step's scratch
+    // (free between steps), so a checkpoint costs no memory per particle
+    const double *a = static_cast<const double *>(data);
+    if (f.integer) {
+      sim.dudx.resize(std::max(sim.dudx.size(), static_cast<size_t>(n * bs)));
+      for (PetscInt i = 0; i < n * bs; ++i)
+        sim.dudx[i] = static_cast<double>(static_cast<PetscInt *>(data)[i]);
+      a = sim.dudx.data();
+    }
+    PetscCall(VecCreateMPIWithArray(sim.comm, 1, n * bs, PETSC_DETERMINE, a, &x));
     PetscCall(PetscObjectSetName((PetscObject)x, f.name));
-    PetscCall(VecGetArray(x, &a));
-    for (PetscInt i = 0; i < n * bs; ++i)
-      a[i] = f.integer ? static_cast<double>(static_cast<PetscInt *>(data)[i])
-                       : static_cast<double *>(data)[i];
-    PetscCall(VecRestoreArray(x, &a));
-    PetscCall(DMSwarmRestoreField(sim.parts.sw, f.name, &bs, &type, &data));
     PetscCall(VecView(x, v));
     PetscCall(VecDestroy(&x));
+    PetscCall(DMSwarmRestoreField(sim.parts.sw, f.name, &bs, &type, &data));
   }
   PetscCall(PetscViewerHDF5PopGroup(v));
 
@@ -548,6 +556,17 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
     r.budget_w_local = ranks == sim.size ? w[sim.rank] : (sim.rank == 0 ? sum : 0.0);
     PetscCall(CheckpointReadArray(v, "iface_stats", is));
     PetscCall(CheckpointReadArray(v, "contact_stats", cs));
+    std::vector<double> loads;
+    PetscCall(CheckpointReadArray(v, "loads", loads));
+    PetscCheck(loads.size() == 3 * DIM * sim.loads.size(), sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+               "-restart %s: the checkpoint has %d loaded particles, these options give %d", F,
+               (int)(loads.size() / (3 * DIM)), (int)sim.loads.size());
+    for (size_t k = 0; k < sim.loads.size(); ++k)
+      for (int d = 0; d < DIM; ++d) {
+        sim.loads[k].traction[d] = loads[3 * DIM * k + d];
+        sim.loads[k].tface[d] = loads[3 * DIM * k + DIM + d];
+        sim.loads[k].lp[d] = loads[3 * DIM * k + 2 * DIM + d];
+      }
     PetscCheck(is.size() == 4 && cs.size() == 5 + sim.chains.size(), sim.comm,
                PETSC_ERR_FILE_UNEXPECTED, "-restart %s: damaged checkpoint (/run stats)", F);
     sim.iface_stats = InterfaceStats{is[0], is[1], is[2], is[3]};

@@ -24,7 +24,7 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   PetscCall(PetscLogEventBegin(ev_p2g, 0, 0, 0, 0));
   PetscCall(GridGetLocal(g, true, G));
   p2g<Shape>(P, load, G);
-  if (!sim.traction_idx.empty()) p2g_traction(P, sim.traction_idx, load.factor, G);
+  if (!sim.traction_idx.empty()) p2g_traction(P, sim.loads, sim.traction_idx, load.factor, G);
   PetscCall(GridRestoreLocal(g, G));
   PetscCall(PetscLogEventEnd(ev_p2g, 0, 0, 0, 0));
   // 1a. Membrane chains: their points' mass, momentum, axial and external forces into their own
@@ -370,7 +370,7 @@ PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio) {
     p2g<LinearShape>(P, load, G);
   else
     p2g<UGIMPShape>(P, load, G);
-  if (!sim.traction_idx.empty()) p2g_traction(P, sim.traction_idx, load.factor, G);
+  if (!sim.traction_idx.empty()) p2g_traction(P, sim.loads, sim.traction_idx, load.factor, G);
   PetscCall(GridRestoreLocal(g, G));
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscCall(GridLocalToGlobalAdd(g));

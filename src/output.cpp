@@ -1,5 +1,6 @@
 #include "pmpm/output.hpp"
 #include "pmpm/balance.hpp"
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <petscviewerhdf5.h>
@@ -28,18 +29,14 @@ PetscErrorCode MakeDirs(const std::string &path) {
   PetscFunctionReturn(0);
 }
 
-// Write one particle field (bs values per particle) as a named dataset.
+// Write one particle field (bs values per particle) as a named dataset, straight from its array:
+// no copy, so a 10-million-particle frame costs no more memory than the particles themselves.
 PetscErrorCode WriteField(MPI_Comm comm, PetscViewer v, const char *name, PetscInt n, int bs,
                           const double *data) {
   Vec x;
-  double *a;
   PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(comm, n * bs, PETSC_DETERMINE, &x));
-  PetscCall(VecSetBlockSize(x, bs));
+  PetscCall(VecCreateMPIWithArray(comm, bs, n * bs, PETSC_DETERMINE, data, &x));
   PetscCall(PetscObjectSetName((PetscObject)x, name));
-  PetscCall(VecGetArray(x, &a));
-  for (PetscInt i = 0; i < n * bs; ++i) a[i] = data[i];
-  PetscCall(VecRestoreArray(x, &a));
   PetscCall(VecView(x, v));
   PetscCall(VecDestroy(&x));
   PetscFunctionReturn(0);
@@ -137,17 +134,19 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
   const std::string path = sim.set.output_dir + "/" + h5name;
   PetscCall(ParticlesGetView(sim.parts, P));
   const PetscInt n = P.n;
-  std::vector<double> disp(n * DIM), mat(n), id(n);
-  for (PetscInt p = 0; p < n; ++p) {
-    for (int d = 0; d < DIM; ++d) disp[p * DIM + d] = P.x[p * DIM + d] - P.x0[p * DIM + d];
-    mat[p] = P.mat[p];
-    id[p] = P.pid[p];
-  }
+  // The fields that are not stored go through the step's scratch (L dt per particle between G2P
+  // and the stress update, free between steps): no new memory.
+  std::vector<double> &derived = sim.dudx;
+  derived.resize(std::max(derived.size(), static_cast<size_t>(n * DIM)));
   PetscCall(PetscViewerHDF5Open(sim.comm, (path + ".tmp").c_str(), FILE_MODE_WRITE, &v));
+  // every rank writes its own particles' rows of each dataset, in one collective MPI-IO call (a
+  // parallel file system's fast path); nothing is gathered on one rank
+  PetscCall(PetscViewerHDF5SetCollective(v, PETSC_TRUE));
   PetscCall(PetscViewerHDF5PushGroup(v, "/particles"));
   PetscCall(WriteField(sim.comm, v, "position", n, DIM, P.x));
   PetscCall(WriteField(sim.comm, v, "position0", n, DIM, P.x0));
-  PetscCall(WriteField(sim.comm, v, "displacement", n, DIM, disp.data()));
+  for (PetscInt i = 0; i < n * DIM; ++i) derived[i] = P.x[i] - P.x0[i];
+  PetscCall(WriteField(sim.comm, v, "displacement", n, DIM, derived.data()));
   PetscCall(WriteField(sim.comm, v, "velocity", n, DIM, P.v));
   PetscCall(WriteField(sim.comm, v, "stress", n, NSTRESS, P.stress));
   PetscCall(WriteField(sim.comm, v, "F", n, DIM * DIM, P.F));
@@ -157,8 +156,10 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
   PetscCall(WriteField(sim.comm, v, "mass", n, 1, P.mass));
   PetscCall(WriteField(sim.comm, v, "eps_p", n, 1, P.eps_p));
   PetscCall(WriteField(sim.comm, v, "colour", n, 1, P.colour));
-  PetscCall(WriteField(sim.comm, v, "material", n, 1, mat.data()));
-  PetscCall(WriteField(sim.comm, v, "id", n, 1, id.data()));
+  for (PetscInt p = 0; p < n; ++p) derived[p] = P.mat[p];
+  PetscCall(WriteField(sim.comm, v, "material", n, 1, derived.data()));
+  for (PetscInt p = 0; p < n; ++p) derived[p] = P.pid[p];
+  PetscCall(WriteField(sim.comm, v, "id", n, 1, derived.data()));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerDestroy(&v));
   PetscCall(ParticlesRestoreView(sim.parts, P));

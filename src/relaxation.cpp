@@ -48,10 +48,11 @@ constexpr double kTensionWarn = 0.01;
 // sum_p f_p . v_p over this rank's particles (the load's power after the step).
 // Power of the surface tractions on this rank's loaded particles (per unit load factor); the
 // body forces' share comes from G2P (G2PStats::weight_power).
-double TractionPower(const ParticleView &P, const std::vector<PetscInt> &idx) {
+double TractionPower(const ParticleView &P, const std::vector<ParticleLoad> &loads,
+                     const std::vector<PetscInt> &idx) {
   double pw = 0;
   for (const PetscInt p : idx)
-    for (int d = 0; d < DIM; ++d) pw += P.traction[p * DIM + d] * P.v[p * DIM + d];
+    for (int d = 0; d < DIM; ++d) pw += loads[P.load[p]].traction[d] * P.v[p * DIM + d];
   return pw;
 }
 
@@ -188,7 +189,7 @@ PetscErrorCode Relax(Simulation &sim) {
       if (!sim.traction_idx.empty()) {
         ParticleView P;
         PetscCall(ParticlesGetView(sim.parts, P));
-        pw += TractionPower(P, sim.traction_idx);
+        pw += TractionPower(P, sim.loads, sim.traction_idx);
         PetscCall(ParticlesRestoreView(sim.parts, P));
       }
       run.budget_w_local += run.dt * load.factor * pw + rep.eigen_power;

@@ -4,8 +4,9 @@
 #include "pmpm/materials/elastic.hpp"
 #include "pmpm/materials/von_mises.hpp"
 #include "pmpm/prerun.hpp"
-#include <limits>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <cstring>
 
@@ -238,7 +239,7 @@ PetscErrorCode SimulationIndexParticles(Simulation &sim) {
   for (PetscInt p = 0; p < P.n; ++p) {
     if (P.colour[p] > 0.5) sim.iface_idx.push_back(p);
     sim.mat_idx[P.mat[p]].push_back(static_cast<int>(p));
-    if (P.traction[p * DIM] != 0.0 || P.traction[p * DIM + 1] != 0.0) sim.traction_idx.push_back(p);
+    if (P.load[p] >= 0) sim.traction_idx.push_back(p);
   }
   sim.dudx.resize(static_cast<size_t>(P.n) * DIM * DIM);
   PetscCall(ParticlesRestoreView(sim.parts, P));
@@ -282,7 +283,7 @@ PetscErrorCode BoundaryFromOptions(Simulation &sim) {
 
 // A face traction loads the particles whose blocks reach the body's extreme toward that face:
 // force t * (the block's face length), applied at the block's face (tface, see p2g_traction).
-PetscErrorCode ApplyFaceTractions(Simulation &sim, std::vector<ParticleInit> &init) {
+PetscErrorCode ApplyFaceTractions(Simulation &sim, ParticleList &init) {
   PetscFunctionBeginUser;
   for (int f = 0; f < 2 * DIM; ++f) {
     const double *t = sim.face_traction[f];
@@ -300,9 +301,52 @@ PetscErrorCode ApplyFaceTractions(Simulation &sim, std::vector<ParticleInit> &in
   }
   PetscFunctionReturn(0);
 }
+// The surface loads as a table every rank holds alike: the loaded particles of every rank, in
+// particle-id order (so the table does not depend on the rank count); each particle keeps its
+// entry's index.
+PetscErrorCode BuildLoadTable(Simulation &sim, ParticleList &init) {
+  constexpr int W = 1 + 3 * DIM; // pid, traction, tface, lp
+  std::vector<double> mine;
+  PetscFunctionBeginUser;
+  for (const auto &q : init)
+    if (q.traction[0] != 0.0 || q.traction[1] != 0.0) {
+      mine.push_back(static_cast<double>(q.pid));
+      for (int d = 0; d < DIM; ++d) mine.push_back(q.traction[d]);
+      for (int d = 0; d < DIM; ++d) mine.push_back(q.tface[d]);
+      for (int d = 0; d < DIM; ++d) mine.push_back(q.lp[d]);
+    }
+  int n = static_cast<int>(mine.size());
+  std::vector<int> counts(sim.size), displs(sim.size, 0);
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, sim.comm));
+  for (int r = 1; r < sim.size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  std::vector<double> all(static_cast<size_t>(displs.back() + counts.back()));
+  PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
+                              MPI_DOUBLE, sim.comm));
+  const size_t nl = all.size() / W;
+  std::vector<size_t> order(nl);
+  for (size_t k = 0; k < nl; ++k) order[k] = k;
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return all[a * W] < all[b * W]; });
+  sim.loads.resize(nl);
+  std::vector<PetscInt> pids(nl);
+  for (size_t k = 0; k < nl; ++k) {
+    const double *r = &all[order[k] * W];
+    pids[k] = static_cast<PetscInt>(r[0]);
+    for (int d = 0; d < DIM; ++d) {
+      sim.loads[k].traction[d] = r[1 + d];
+      sim.loads[k].tface[d] = r[1 + DIM + d];
+      sim.loads[k].lp[d] = r[1 + 2 * DIM + d];
+    }
+  }
+  for (auto &q : init)
+    if (q.traction[0] != 0.0 || q.traction[1] != 0.0)
+      q.load = std::lower_bound(pids.begin(), pids.end(), q.pid) - pids.begin();
+  PetscFunctionReturn(0);
+}
+
 // With chains, a particle's body is 2 k, k the number of chains below its centre (a chain's
 // height at x by linear interpolation of its points, held level beyond its ends).
-void AssignBodies(const Simulation &sim, std::vector<ParticleInit> &init) {
+void AssignBodies(const Simulation &sim, ParticleList &init) {
   for (auto &q : init) {
     int below = 0;
     for (const Chain &c : sim.chains) {
@@ -465,12 +509,13 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
                        sim.grid));
   if (iface) PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
   PetscCall(ParticlesCreate(sim.grid, sim.parts));
-  std::vector<ParticleInit> init;
+  ParticleList init;
   PetscCall(sim.scene->generate(sim, init));
   PetscCall(BalanceSetup(sim, init)); // may recreate the grid and generate init again
   if (!help) PetscCall(CheckMemoryParticles(sim, mem, (PetscInt)init.size()));
   PetscCall(ApplyFaceTractions(sim, init));
   if (nchain > 0) AssignBodies(sim, init);
+  PetscCall(BuildLoadTable(sim, init));
   // The PMPM support spans at most two cells per direction: 0 < l <= h/2.
   for (const auto &q : init)
     for (int d = 0; d < DIM; ++d)

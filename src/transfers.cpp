@@ -97,17 +97,18 @@ void p2g(const ParticleView &P, const Load &load, const GridView &G, const Petsc
     p2g_impl<Shape, false>(P, load, G, idx, nidx);
 }
 
-void p2g_traction(const ParticleView &P, const std::vector<PetscInt> &idx, double factor,
-                  const GridView &G) {
+void p2g_traction(const ParticleView &P, const std::vector<ParticleLoad> &loads,
+                  const std::vector<PetscInt> &idx, double factor, const GridView &G) {
   Weights<LinearShape> W;
   const double zero[DIM] = {0.0, 0.0};
   for (const PetscInt p : idx) {
     // The face sits at the undeformed offset: PMPM blocks keep their initial size, so this is
     // the face the body's weights see (consistent with eq. 14).
-    const double *o = P.tface + p * DIM;
+    const ParticleLoad &L = loads[P.load[p]];
+    const double *o = L.tface;
     const double xf[DIM] = {P.x[p * DIM] + o[0], P.x[p * DIM + 1] + o[1]};
     weights<LinearShape>(xf, zero, G.origin, G.h, W);
-    const double t[DIM] = {factor * P.traction[p * DIM], factor * P.traction[p * DIM + 1]};
+    const double t[DIM] = {factor * L.traction[0], factor * L.traction[1]};
     const int off = G.nbody > 1 ? P.body[p] * GridDof::NDOF : 0;
     for (int b = 0; b < 2; ++b)
       for (int a = 0; a < 2; ++a) {

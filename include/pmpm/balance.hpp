@@ -10,6 +10,7 @@
 // rank (a column-row block) holds 1/(mn) only if the particles are spread like a product of the
 // two marginals; a tensor product cannot do better for the general 2D distribution.
 #pragma once
+#include "pmpm/particles.hpp"
 #include <petscsys.h>
 #include <string>
 #include <vector>
@@ -17,7 +18,6 @@
 namespace pmpm {
 
 struct Simulation;
-struct ParticleInit;
 
 enum class BalanceMode { None = 0, Setup = 1 };
 inline constexpr const char *BalanceModeNames[] = {"none", "setup", "BalanceMode", "BALANCE_",
@@ -37,7 +37,7 @@ PetscErrorCode BalanceFromOptions(MPI_Comm comm, Balance &b);
 // Setup-time balancing, called after the scene's first generate() into init: measures the
 // imbalance and, if the particle-balanced partition pays, recreates the grid (and the interface
 // grid and the swarm on it) and generates init again.
-PetscErrorCode BalanceSetup(Simulation &sim, std::vector<ParticleInit> &init);
+PetscErrorCode BalanceSetup(Simulation &sim, ParticleList &init);
 // The "partition" and "balance" blocks of summary.json (rank-collective): process grid, owned
 // nodes per rank column and row, the cell ranges they own, particles per rank and the imbalance
 // now; the setup balancing's imbalance before and after.

@@ -3,6 +3,7 @@
 #pragma once
 #include "pmpm/config.hpp"
 #include "pmpm/grid.hpp"
+#include <deque>
 #include <petscdmswarm.h>
 #include <vector>
 
@@ -11,23 +12,31 @@ namespace pmpm {
 // Raw per-particle arrays (each field is contiguous; block size in the comment).
 struct ParticleView {
   PetscInt n = 0;
-  double *x = nullptr;        // DIM, current position
-  double *x0 = nullptr;       // DIM, initial position
-  double *v = nullptr;        // DIM, velocity
-  double *lp = nullptr;       // DIM, initial half-size (PMPM block)
-  double *mass = nullptr;     // 1, inertial mass (may be scaled; never the load)
-  double *vol = nullptr;      // 1, current volume (area per unit thickness)
-  double *vol0 = nullptr;     // 1, initial volume
-  double *weight = nullptr;   // 1, body force magnitude gamma * V0 (conserved)
-  double *traction = nullptr; // DIM, surface force on the particle's face (per unit thickness)
-  double *tface = nullptr;    // DIM, initial offset from the centre to the loaded face's centre
-  double *stress = nullptr;   // NSTRESS, Cauchy stress xx yy zz xy
-  double *F = nullptr;        // DIM*DIM, deformation gradient, row-major
-  double *eps_p = nullptr;    // 1, equivalent plastic strain
-  double *colour = nullptr;   // 1, interface colour (1 on the geomembrane)
-  PetscInt *mat = nullptr;    // 1, material index
-  PetscInt *pid = nullptr;    // 1, global particle id (rank-independent)
-  PetscInt *body = nullptr;   // 1, body on the grid (0 without chains; chain.hpp)
+  double *x = nullptr;      // DIM, current position
+  double *x0 = nullptr;     // DIM, initial position
+  double *v = nullptr;      // DIM, velocity
+  double *lp = nullptr;     // DIM, initial half-size (PMPM block)
+  double *mass = nullptr;   // 1, inertial mass (may be scaled; never the load)
+  double *vol = nullptr;    // 1, current volume (area per unit thickness)
+  double *vol0 = nullptr;   // 1, initial volume
+  double *weight = nullptr; // 1, body force magnitude gamma * V0 (conserved)
+  double *stress = nullptr; // NSTRESS, Cauchy stress xx yy zz xy
+  double *F = nullptr;      // DIM*DIM, deformation gradient, row-major
+  double *eps_p = nullptr;  // 1, equivalent plastic strain
+  double *colour = nullptr; // 1, interface colour (1 on the geomembrane)
+  PetscInt *mat = nullptr;  // 1, material index
+  PetscInt *pid = nullptr;  // 1, global particle id (rank-independent)
+  PetscInt *body = nullptr; // 1, body on the grid (0 without chains; chain.hpp)
+  PetscInt *load = nullptr; // 1, the particle's entry in the run's ParticleLoad table, or -1
+};
+
+// A surface load on one particle. Few particles carry one (a loaded face's outermost row), so
+// the loads are a table every rank holds alike, in particle-id order, and a particle carries
+// only its entry's index: 4 bytes instead of 32 per particle (BENCHMARKS.md, memory).
+struct ParticleLoad {
+  double traction[DIM]; // force on the particle's face (per unit thickness)
+  double tface[DIM];    // initial offset from the centre to the loaded face's centre
+  double lp[DIM];       // the particle's initial half-size (a scene rescales by face length)
 };
 
 // One particle as a scene creates it.
@@ -43,7 +52,14 @@ struct ParticleInit {
   PetscInt mat;
   PetscInt pid;
   PetscInt body = 0;
+  PetscInt load = -1; // set by SimulationSetup from traction (ParticleLoad)
 };
+
+// The particles a scene generates, before they enter the swarm. A deque, not a vector: it never
+// reallocates while a scene fills it (a vector's doubling held up to 2 x 112 B per particle), and
+// ParticlesAdd frees it block by block as the swarm grows, so the two never coexist in full
+// (BENCHMARKS.md, memory per particle).
+using ParticleList = std::deque<ParticleInit>;
 
 struct Particles {
   DM sw = nullptr;
@@ -51,8 +67,10 @@ struct Particles {
 
 PetscErrorCode ParticlesCreate(Grid &g, Particles &P);
 PetscErrorCode ParticlesDestroy(Particles &P);
-// Add the particles this rank owns (they must lie in this rank's cells).
-PetscErrorCode ParticlesAdd(Particles &P, const std::vector<ParticleInit> &init);
+// Add the particles this rank owns (they must lie in this rank's cells), consuming init: it is
+// empty on return. The swarm grows in chunks while init shrinks, so peak memory is about the
+// swarm's, not the swarm's plus the list's.
+PetscErrorCode ParticlesAdd(Particles &P, ParticleList &init);
 PetscErrorCode ParticlesGetView(Particles &P, ParticleView &v);
 PetscErrorCode ParticlesRestoreView(Particles &P, ParticleView &v);
 // Move particles to the ranks owning their cells (only call when some left).

@@ -11,7 +11,7 @@ using MaterialAt = std::function<int(const double x[DIM])>;
 
 // ppc^DIM particles per cell at sub-cell centres, for the cells this rank owns, each assigned
 // by `at`. Particle ids are rank-independent: (cell index * ppc^DIM + sub-index).
-void FillRegular(const Simulation &sim, const MaterialAt &at, std::vector<ParticleInit> &out);
+void FillRegular(const Simulation &sim, const MaterialAt &at, ParticleList &out);
 
 // A length must be a positive whole number of cells (so faces fall on grid lines).
 PetscErrorCode CheckCells(MPI_Comm comm, const char *option, double length, double h,

@@ -67,7 +67,7 @@ public:
   // Read the scene's options; set the box (origin, ncell), face BCs and material names.
   virtual PetscErrorCode setup(Simulation &sim) = 0;
   // The particles whose centres lie in this rank's cells.
-  virtual PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) = 0;
+  virtual PetscErrorCode generate(Simulation &sim, ParticleList &out) = 0;
   // Scene-specific results, as "key": value pairs appended to the summary's results object.
   virtual PetscErrorCode results(Simulation &sim, std::string &json) = 0;
   // Called once before the first step (step 0: a scene may set initial velocities there) and
@@ -150,7 +150,8 @@ struct Simulation {
   std::vector<double> chain_buf;         // scratch for the chains' allreduce
   std::vector<double> wave_modulus;      // per material
   std::vector<std::vector<int>> mat_idx; // particles of each material (this rank)
-  std::vector<PetscInt> traction_idx;    // particles carrying a traction
+  std::vector<ParticleLoad> loads;       // surface loads, every rank alike (particles.hpp)
+  std::vector<PetscInt> traction_idx;    // particles carrying a surface load (this rank)
   std::vector<double> dudx;              // L dt per particle (scratch)
   std::vector<int> fbar_group;           // -fbar: each particle's cell and body (scratch)
   std::vector<double> fbar_sums;         // -fbar: volumes per group (scratch)

@@ -42,8 +42,8 @@ void p2g_cell_colour(const ParticleView &P, const GridView &G);
 
 // Surface tractions act at the particle's face point x + tface; linear hats there give the
 // consistent nodal load of a traction on the body's face. idx lists the loaded particles.
-void p2g_traction(const ParticleView &P, const std::vector<PetscInt> &idx, double factor,
-                  const GridView &G);
+void p2g_traction(const ParticleView &P, const std::vector<ParticleLoad> &loads,
+                  const std::vector<PetscInt> &idx, double factor, const GridView &G);
 
 struct GridUpdateParams {
   double dt = 0;

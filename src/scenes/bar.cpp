@@ -68,7 +68,7 @@ public:
     PetscFunctionReturn(0);
   }
 
-  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+  PetscErrorCode generate(Simulation &sim, ParticleList &out) override {
     PetscFunctionBeginUser;
     const double L = L_, B = B_;
     FillRegular(
@@ -173,7 +173,7 @@ public:
     PetscCall(ParticlesGetView(sim.parts, P));
     for (PetscInt p = 0; p < P.n; ++p) {
       err = std::fmax(err, std::fabs(P.stress[p * NSTRESS] - t_) / std::fabs(t_));
-      if (P.traction[p * DIM] != 0.0) {
+      if (P.load[p] >= 0) {
         s[0] += P.x[p * DIM] - P.x0[p * DIM];
         s[1] += P.x0[p * DIM];
         s[2] += 1;

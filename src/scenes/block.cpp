@@ -130,7 +130,7 @@ public:
     PetscFunctionReturn(0);
   }
 
-  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+  PetscErrorCode generate(Simulation &sim, ParticleList &out) override {
     PetscFunctionBeginUser;
     const double x0 = xc_[0] - 0.5 * Lb_, x1 = xc_[0] + 0.5 * Lb_;
     const double y0 = xc_[1] - 0.5 * Hb_, y1 = xc_[1] + 0.5 * Hb_;

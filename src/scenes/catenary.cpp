@@ -113,7 +113,7 @@ public:
     PetscFunctionReturn(0);
   }
 
-  PetscErrorCode generate(Simulation &, std::vector<ParticleInit> &) override { return 0; }
+  PetscErrorCode generate(Simulation &, ParticleList &) override { return 0; }
 
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     PetscFunctionBeginUser;

@@ -69,7 +69,7 @@ public:
     PetscFunctionReturn(0);
   }
 
-  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+  PetscErrorCode generate(Simulation &sim, ParticleList &out) override {
     PetscFunctionBeginUser;
     const double H = H_, W = W_;
     FillRegular(

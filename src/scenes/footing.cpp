@@ -42,14 +42,11 @@ class FootingScene final : public Scene {
   bool collapsed_ = false;
   double q_prev_ = 0; // the previous stage's pressure: where this stage's ramp starts
 
-  // The pressure the traction field carries now: set every loaded particle's traction to q times
-  // its face length (its block's width).
+  // The pressure the loads carry now: every loaded particle's traction is q times its face
+  // length (its block's width). Every rank sets the whole table alike.
   PetscErrorCode set_pressure(Simulation &sim, double q) {
-    ParticleView P;
     PetscFunctionBeginUser;
-    PetscCall(ParticlesGetView(sim.parts, P));
-    for (const PetscInt p : sim.traction_idx) P.traction[p * DIM + 1] = -q * 2.0 * P.lp[p * DIM];
-    PetscCall(ParticlesRestoreView(sim.parts, P));
+    for (ParticleLoad &L : sim.loads) L.traction[1] = -q * 2.0 * L.lp[0];
     PetscFunctionReturn(0);
   }
 
@@ -144,7 +141,7 @@ public:
     PetscFunctionReturn(0);
   }
 
-  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+  PetscErrorCode generate(Simulation &sim, ParticleList &out) override {
     PetscFunctionBeginUser;
     const double W = W_, D = D_, half = 0.5 * B_;
     FillRegular(

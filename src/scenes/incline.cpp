@@ -98,7 +98,7 @@ public:
     PetscFunctionReturn(0);
   }
 
-  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+  PetscErrorCode generate(Simulation &sim, ParticleList &out) override {
     PetscFunctionBeginUser;
     const double Hbase = Hbase_, Hb = Hb_, Lbase = Lbase_, x0 = x0_, Lb = Lb_;
     FillRegular(

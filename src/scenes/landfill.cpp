@@ -257,7 +257,7 @@ public:
     PetscFunctionReturn(0);
   }
 
-  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+  PetscErrorCode generate(Simulation &sim, ParticleList &out) override {
     PetscFunctionBeginUser;
     const double Hw = Hw_, t = t_, top = Hw_ + t_ + Hs_, r = D_ / 2, xc = Xc_, yc = Hw_ - D_ / 2;
     const bool layered = layers_ > 0, chain = chain_;

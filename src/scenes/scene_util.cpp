@@ -5,7 +5,7 @@
 
 namespace pmpm {
 
-void FillRegular(const Simulation &sim, const MaterialAt &at, std::vector<ParticleInit> &out) {
+void FillRegular(const Simulation &sim, const MaterialAt &at, ParticleList &out) {
   const double h = sim.set.h;
   const PetscInt ppc = sim.set.ppc;
   const double dx = h / ppc;

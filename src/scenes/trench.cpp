@@ -243,7 +243,7 @@ public:
     PetscFunctionReturn(0);
   }
 
-  PetscErrorCode generate(Simulation &sim, std::vector<ParticleInit> &out) override {
+  PetscErrorCode generate(Simulation &sim, ParticleList &out) override {
     PetscFunctionBeginUser;
     const double Hb = Hb_, top = Hb_ + H_, floor = Hb_ - D_, x0 = xe_[0], x1 = xe_[1];
     FillRegular(

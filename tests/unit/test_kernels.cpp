@@ -47,9 +47,8 @@ struct TestGrid {
 
 // Particle arrays over std::vectors.
 struct TestParticles {
-  std::vector<double> x, x0, v, lp, mass, vol, vol0, weight, traction, tface, stress, F, eps_p,
-      colour;
-  std::vector<PetscInt> mat, pid;
+  std::vector<double> x, x0, v, lp, mass, vol, vol0, weight, stress, F, eps_p, colour;
+  std::vector<PetscInt> mat, pid, load;
   ParticleView P; // points into the vectors above: never copy a TestParticles
   TestParticles(const TestParticles &) = delete;
   TestParticles &operator=(const TestParticles &) = delete;
@@ -62,8 +61,6 @@ struct TestParticles {
     vol.assign(n, 1.0);
     vol0.assign(n, 1.0);
     weight.assign(n, 0.0);
-    traction.assign(n * DIM, 0.0);
-    tface.assign(n * DIM, 0.0);
     stress.assign(n * NSTRESS, 0.0);
     F.assign(n * DIM * DIM, 0.0);
     for (PetscInt p = 0; p < n; ++p) F[p * 4] = F[p * 4 + 3] = 1.0;
@@ -71,6 +68,7 @@ struct TestParticles {
     colour.assign(n, 0.0);
     mat.assign(n, 0);
     pid.assign(n, 0);
+    load.assign(n, -1);
     for (PetscInt p = 0; p < n; ++p) pid[p] = 100 + p;
     P.n = n;
     P.x = x.data();
@@ -81,14 +79,13 @@ struct TestParticles {
     P.vol = vol.data();
     P.vol0 = vol0.data();
     P.weight = weight.data();
-    P.traction = traction.data();
-    P.tface = tface.data();
     P.stress = stress.data();
     P.F = F.data();
     P.eps_p = eps_p.data();
     P.colour = colour.data();
     P.mat = mat.data();
     P.pid = pid.data();
+    P.load = load.data();
   }
 };
 
