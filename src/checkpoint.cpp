@@ -9,6 +9,7 @@
 //   /scene      the scene's own state (Scene::checkpoint_write)
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/output.hpp"
+#include "pmpm/parallel_h5.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -387,14 +388,15 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
   PetscCall(PetscViewerHDF5PushGroup(v, "/particles"));
   PetscCall(WritePerRank(sim.comm, v, "counts", static_cast<double>(n)));
+  hid_t fid, gid;
+  PetscCall(PetscViewerHDF5OpenGroup(v, nullptr, &fid, &gid));
   for (const ParticleFieldInfo &f : ParticlesFieldList()) {
     void *data;
     PetscInt bs;
     PetscDataType type;
-    Vec x;
     PetscCall(DMSwarmGetField(sim.parts.sw, f.name, &bs, &type, &data));
     // real fields are written from the swarm's own arrays; integers through the step's scratch
-    // (free between steps), so a checkpoint costs no memory per particle
+    // (free between steps), so a checkpoint costs no memory per particle (parallel_h5.hpp)
     const double *a = static_cast<const double *>(data);
     if (f.integer) {
       sim.dudx.resize(std::max(sim.dudx.size(), static_cast<size_t>(n * bs)));
@@ -402,12 +404,10 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
         sim.dudx[i] = static_cast<double>(static_cast<PetscInt *>(data)[i]);
       a = sim.dudx.data();
     }
-    PetscCall(VecCreateMPIWithArray(sim.comm, 1, n * bs, PETSC_DETERMINE, a, &x));
-    PetscCall(PetscObjectSetName((PetscObject)x, f.name));
-    PetscCall(VecView(x, v));
-    PetscCall(VecDestroy(&x));
+    PetscCall(WriteRowsCollective(sim.comm, gid, f.name, n, bs, a, true));
     PetscCall(DMSwarmRestoreField(sim.parts.sw, f.name, &bs, &type, &data));
   }
+  H5Gclose(gid);
   PetscCall(PetscViewerHDF5PopGroup(v));
 
   // chains (every rank holds them alike: rank 0's are written)

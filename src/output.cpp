@@ -1,5 +1,6 @@
 #include "pmpm/output.hpp"
 #include "pmpm/balance.hpp"
+#include "pmpm/parallel_h5.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -26,19 +27,6 @@ PetscErrorCode MakeDirs(const std::string &path) {
     }
     if (i < path.size()) cur += path[i];
   }
-  PetscFunctionReturn(0);
-}
-
-// Write one particle field (bs values per particle) as a named dataset, straight from its array:
-// no copy, so a 10-million-particle frame costs no more memory than the particles themselves.
-PetscErrorCode WriteField(MPI_Comm comm, PetscViewer v, const char *name, PetscInt n, int bs,
-                          const double *data) {
-  Vec x;
-  PetscFunctionBeginUser;
-  PetscCall(VecCreateMPIWithArray(comm, bs, n * bs, PETSC_DETERMINE, data, &x));
-  PetscCall(PetscObjectSetName((PetscObject)x, name));
-  PetscCall(VecView(x, v));
-  PetscCall(VecDestroy(&x));
   PetscFunctionReturn(0);
 }
 
@@ -139,29 +127,33 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
   std::vector<double> &derived = sim.dudx;
   derived.resize(std::max(derived.size(), static_cast<size_t>(n * DIM)));
   PetscCall(PetscViewerHDF5Open(sim.comm, (path + ".tmp").c_str(), FILE_MODE_WRITE, &v));
-  // every rank writes its own particles' rows of each dataset, in one collective MPI-IO call (a
-  // parallel file system's fast path); nothing is gathered on one rank
-  PetscCall(PetscViewerHDF5SetCollective(v, PETSC_TRUE));
   PetscCall(PetscViewerHDF5PushGroup(v, "/particles"));
-  PetscCall(WriteField(sim.comm, v, "position", n, DIM, P.x));
-  PetscCall(WriteField(sim.comm, v, "position0", n, DIM, P.x0));
+  hid_t fid, gid;
+  PetscCall(PetscViewerHDF5OpenGroup(v, nullptr, &fid, &gid));
+  // every rank writes its own particles' rows of each dataset, in one collective MPI-IO call (a
+  // parallel file system's fast path): nothing is gathered on one rank (parallel_h5.hpp)
+
+  PetscCall(WriteRowsCollective(sim.comm, gid, "position", n, DIM, P.x));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "position0", n, DIM, P.x0));
   for (PetscInt i = 0; i < n * DIM; ++i) derived[i] = P.x[i] - P.x0[i];
-  PetscCall(WriteField(sim.comm, v, "displacement", n, DIM, derived.data()));
-  PetscCall(WriteField(sim.comm, v, "velocity", n, DIM, P.v));
-  PetscCall(WriteField(sim.comm, v, "stress", n, NSTRESS, P.stress));
-  PetscCall(WriteField(sim.comm, v, "F", n, DIM * DIM, P.F));
-  PetscCall(WriteField(sim.comm, v, "volume", n, 1, P.vol));
-  PetscCall(WriteField(sim.comm, v, "volume0", n, 1, P.vol0));
-  PetscCall(WriteField(sim.comm, v, "halfsize", n, DIM, P.lp));
-  PetscCall(WriteField(sim.comm, v, "mass", n, 1, P.mass));
-  PetscCall(WriteField(sim.comm, v, "eps_p", n, 1, P.eps_p));
-  PetscCall(WriteField(sim.comm, v, "colour", n, 1, P.colour));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "displacement", n, DIM, derived.data()));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "velocity", n, DIM, P.v));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "stress", n, NSTRESS, P.stress));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "F", n, DIM * DIM, P.F));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "volume", n, 1, P.vol));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "volume0", n, 1, P.vol0));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "halfsize", n, DIM, P.lp));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "mass", n, 1, P.mass));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "eps_p", n, 1, P.eps_p));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "colour", n, 1, P.colour));
   for (PetscInt p = 0; p < n; ++p) derived[p] = P.mat[p];
-  PetscCall(WriteField(sim.comm, v, "material", n, 1, derived.data()));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "material", n, 1, derived.data()));
   for (PetscInt p = 0; p < n; ++p) derived[p] = P.pid[p];
-  PetscCall(WriteField(sim.comm, v, "id", n, 1, derived.data()));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "id", n, 1, derived.data()));
+  H5Gclose(gid);
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscCall(PetscViewerDestroy(&v));
+  H5garbage_collect(); // HDF5's free lists hand their blocks back
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscCall(OutputCommit(sim, h5name));
 
