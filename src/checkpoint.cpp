@@ -390,7 +390,7 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   PetscCall(WritePerRank(sim.comm, v, "counts", static_cast<double>(n)));
   hid_t fid, gid;
   PetscCall(PetscViewerHDF5OpenGroup(v, nullptr, &fid, &gid));
-  for (const ParticleFieldInfo &f : ParticlesFieldList()) {
+  for (const ParticleFieldInfo &f : ParticlesFieldList(sim.parts)) {
     void *data;
     PetscInt bs;
     PetscDataType type;
@@ -596,7 +596,13 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
       nloc = static_cast<PetscInt>(counts[sim.rank]);
     else
       nloc = total / sim.size + (sim.rank < total % sim.size ? 1 : 0);
-    const std::vector<ParticleFieldInfo> fields = ParticlesFieldList();
+    const std::vector<ParticleFieldInfo> fields = ParticlesFieldList(sim.parts);
+    PetscBool affine; // the APIC matrix: saved exactly when the run had -transfer apic
+    PetscCall(PetscViewerHDF5HasDataset(v, kAffineField, &affine));
+    PetscCheck(bool(affine) == sim.parts.affine, sim.comm, PETSC_ERR_USER_INPUT,
+               "-restart %s: the checkpoint was written with -transfer %s, this run has -transfer "
+               "%s: restart with the same -transfer",
+               F, affine ? "apic" : "flip", sim.parts.affine ? "apic" : "flip");
     PetscInt w = 0;
     for (const auto &f : fields) w += f.bs;
     std::vector<double> rec(static_cast<size_t>(nloc * w)); // records: every field of a particle

@@ -33,6 +33,9 @@ PetscErrorCode ParticlesCreate(Grid &g, Particles &P) {
   PetscCall(DMSwarmInitializeFieldRegister(P.sw));
   for (const auto &f : kFields)
     PetscCall(DMSwarmRegisterPetscDatatypeField(P.sw, f.name, f.bs, f.type));
+  // APIC only: 32 bytes a particle that FLIP runs do not pay
+  if (P.affine)
+    PetscCall(DMSwarmRegisterPetscDatatypeField(P.sw, kAffineField, DIM * DIM, PETSC_REAL));
   PetscCall(DMSwarmFinalizeFieldRegister(P.sw));
   PetscCall(DMSwarmSetLocalSizes(P.sw, 0, kBuffer));
   PetscFunctionReturn(0);
@@ -56,6 +59,7 @@ PetscErrorCode ParticlesGetView(Particles &P, ParticleView &v) {
   PetscCall(DMSwarmGetField(P.sw, "pid", nullptr, nullptr, (void **)&v.pid));
   PetscCall(DMSwarmGetField(P.sw, "body", nullptr, nullptr, (void **)&v.body));
   PetscCall(DMSwarmGetField(P.sw, "load", nullptr, nullptr, (void **)&v.load));
+  if (P.affine) PetscCall(DMSwarmGetField(P.sw, kAffineField, nullptr, nullptr, (void **)&v.B));
   PetscFunctionReturn(0);
 }
 
@@ -70,6 +74,7 @@ PetscErrorCode ParticlesRestoreView(Particles &P, ParticleView &v) {
   PetscCall(DMSwarmRestoreField(P.sw, "pid", nullptr, nullptr, (void **)&v.pid));
   PetscCall(DMSwarmRestoreField(P.sw, "body", nullptr, nullptr, (void **)&v.body));
   PetscCall(DMSwarmRestoreField(P.sw, "load", nullptr, nullptr, (void **)&v.load));
+  if (P.affine) PetscCall(DMSwarmRestoreField(P.sw, kAffineField, nullptr, nullptr, (void **)&v.B));
   v = ParticleView{};
   PetscFunctionReturn(0);
 }
@@ -96,6 +101,8 @@ PetscErrorCode ParticlesAdd(Particles &P, ParticleList &init) {
         v.v[p * DIM + d] = 0.0;
         v.lp[p * DIM + d] = q.lp[d];
         for (int e = 0; e < DIM; ++e) v.F[(p * DIM + d) * DIM + e] = d == e ? 1.0 : 0.0;
+        if (v.B)
+          for (int e = 0; e < DIM; ++e) v.B[(p * DIM + d) * DIM + e] = 0.0;
       }
       v.mass[p] = q.density * vol;
       v.vol[p] = vol;
@@ -126,9 +133,10 @@ PetscErrorCode ParticlesMigrate(Particles &P) {
   PetscFunctionReturn(0);
 }
 
-std::vector<ParticleFieldInfo> ParticlesFieldList() {
+std::vector<ParticleFieldInfo> ParticlesFieldList(const Particles &P) {
   std::vector<ParticleFieldInfo> list = {{DMSwarmPICField_coor, DIM, false}};
   for (const auto &f : kFields) list.push_back({f.name, f.bs, f.type == PETSC_INT});
+  if (P.affine) list.push_back({kAffineField, DIM * DIM, false});
   return list;
 }
 

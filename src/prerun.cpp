@@ -17,7 +17,7 @@ constexpr double kGridBytesPerNode = 2 * DIM * 8 + 16;
 // per particle: 26 doubles and 3 PetscInt of pmpm's swarm fields (particles.cpp), DMSwarm's own
 // (coordinates' id, rank, cell: 16), and the larger of the setup's ParticleInit copy and the
 // run's scratch (velocity gradient 4 doubles, eigenstrain 3, index 1 int) plus the output's
-// copies (displacement, material, id, one field: 8 doubles)
+// copies (displacement, material, id, one field: 8 doubles); -transfer apic adds B (4 doubles)
 constexpr double kParticleBytes =
     26 * 8 + 3 * sizeof(PetscInt) + 16 +
     (sizeof(ParticleInit) > (7 + 8) * 8 + 4 ? sizeof(ParticleInit) : (7 + 8) * 8 + 4);
@@ -152,7 +152,7 @@ PetscErrorCode CheckMemoryParticles(Simulation &sim, const MemoryCheck &m, Petsc
   const double nodes = (double)sim.grid.gm[0] * sim.grid.gm[1];
   const double need = kRankBaseBytes +
                       nodes * GridBytesPerNode(sim.grid.nd, sim.iface_grid.active) +
-                      (double)nlocal * kParticleBytes;
+                      (double)nlocal * (kParticleBytes + (sim.parts.affine ? DIM * DIM * 8 : 0));
   PetscCall(CompareWithNodes(sim, m, need, "grid and particles"));
   PetscFunctionReturn(0);
 }

@@ -18,6 +18,8 @@ PetscErrorCode ZeroParticleVelocities(Simulation &sim) {
   PetscFunctionBeginUser;
   PetscCall(ParticlesGetView(sim.parts, P));
   for (PetscInt q = 0; q < P.n * DIM; ++q) P.v[q] = 0.0;
+  if (P.B) // -transfer apic: the affine part too
+    for (PetscInt q = 0; q < P.n * DIM * DIM; ++q) P.B[q] = 0.0;
   PetscCall(ParticlesRestoreView(sim.parts, P));
   for (Chain &c : sim.chains) std::fill(c.v.begin(), c.v.end(), 0.0);
   PetscFunctionReturn(0);

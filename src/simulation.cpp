@@ -60,6 +60,11 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                             nullptr, s.ramp_steps, &s.ramp_steps, nullptr));
   PetscCall(PetscOptionsReal("-pic", "PIC fraction of the particle velocity update, 0..1", nullptr,
                              s.pic, &s.pic, nullptr));
+  PetscCall(PetscOptionsEnum(
+      "-transfer",
+      "Particle-grid velocity transfer: flip (FLIP blended with -pic PIC) or "
+      "apic (affine PIC: keeps angular momentum; -pic unused; not with -musl)",
+      nullptr, TransferNames, (PetscEnum)s.transfer, (PetscEnum *)&s.transfer, nullptr));
   PetscCall(PetscOptionsEnum("-inertia_scaling",
                              "Inertial density per material: none (given densities) or "
                              "wave_speed (equal wave speed in every material; loads unchanged)",
@@ -114,6 +119,10 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscCheck(s.ramp_steps >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ramp_steps must be >= 0");
   PetscCheck(s.pic >= 0 && s.pic <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-pic must be in [0, 1] (got %g)", s.pic);
+  // MUSL's second P2G and its kinematics from the remapped velocity would need the affine term
+  // and break the angular momentum argument of affine.hpp (positions would not move by v_p)
+  PetscCheck(!(s.musl && s.transfer == Transfer::Apic), comm, PETSC_ERR_SUP,
+             "-transfer apic is not supported with -musl (use USL: -musl 0, or -transfer flip)");
   PetscCheck(s.output_every >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_every must be >= 0");
   PetscCheck(s.checkpoint_every >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-checkpoint_every must be >= 0 steps (got %" PetscInt_FMT "; 0: never)",
@@ -508,6 +517,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody, nchain * ChainDof::NDOF,
                        sim.grid));
   if (iface) PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
+  sim.parts.affine = sim.set.transfer == Transfer::Apic;
   PetscCall(ParticlesCreate(sim.grid, sim.parts));
   ParticleList init;
   PetscCall(sim.scene->generate(sim, init));

@@ -1,4 +1,5 @@
 #include "pmpm/transfers.hpp"
+#include "pmpm/affine.hpp"
 #include <algorithm>
 #include <cmath>
 
@@ -19,20 +20,27 @@ void held_dofs(PetscInt i, PetscInt j, const PetscInt ncell[DIM], const FaceBC f
 
 namespace {
 // The 1D factors of one particle's tensor-product weights, physical gradients (per metre), and
-// a pointer to its first stencil node; node (a, b) is at node0 + b * row + a * NDOF.
+// a pointer to its first stencil node; node (a, b) is at node0 + b * row + a * NDOF. With Affine
+// (APIC, affine.hpp) also the node offsets x_i - x_p and the affine weights per direction.
 template <class Shape> struct Stencil {
   static constexpr int NS = Shape::NS;
   double wx[NS], dwx[NS], wy[NS], dwy[NS];
+  double rx[NS], ry[NS], ax[NS], ay[NS]; // Affine only: offsets (m), affine weights (per m)
   int nx, ny; // nodes actually touched per direction (the rest have zero weight and gradient)
   double *node0;
 };
-template <class Shape>
+template <class Shape, bool Affine = false>
 inline void stencil(const GridView &G, const double *x, const double *l, Stencil<Shape> &S) {
   constexpr int NS = Shape::NS;
   const double invh = 1.0 / G.h;
   int base[DIM];
-  Shape::eval1d((x[0] - G.origin[0]) * invh, l[0] * invh, base[0], S.wx, S.dwx);
-  Shape::eval1d((x[1] - G.origin[1]) * invh, l[1] * invh, base[1], S.wy, S.dwy);
+  const double xi[DIM] = {(x[0] - G.origin[0]) * invh, (x[1] - G.origin[1]) * invh};
+  Shape::eval1d(xi[0], l[0] * invh, base[0], S.wx, S.dwx);
+  Shape::eval1d(xi[1], l[1] * invh, base[1], S.wy, S.dwy);
+  if (Affine) {
+    affine1d<Shape>(xi[0], base[0], S.wx, S.dwx, G.h, S.rx, S.ax);
+    affine1d<Shape>(xi[1], base[1], S.wy, S.dwy, G.h, S.ry, S.ay);
+  }
   S.nx = S.ny = NS;
   if (NS == 3) { // a uGIMP block inside one cell touches two nodes only
     if (S.wx[NS - 1] == 0.0 && S.dwx[NS - 1] == 0.0) S.nx = 2;
@@ -49,7 +57,8 @@ inline void stencil(const GridView &G, const double *x, const double *l, Stencil
 namespace {
 // Multi: several bodies per node (each particle writes its own body's block, runtime stride);
 // one body keeps the compile-time stride of before (measured: 5-11 % of a step otherwise).
-template <class Shape, bool Multi>
+// Affine: APIC momentum m (w v + B a) (affine.hpp).
+template <class Shape, bool Multi, bool Affine>
 void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
               PetscInt nidx) {
   const int ND = Multi ? G.nd : GridDof::NDOF;
@@ -59,10 +68,13 @@ void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const 
   const PetscInt n = idx ? nidx : P.n;
   for (PetscInt k = 0; k < n; ++k) {
     const PetscInt p = idx ? idx[k] : k;
-    stencil<Shape>(G, P.x + p * DIM, P.lp + p * DIM, S);
+    stencil<Shape, Affine>(G, P.x + p * DIM, P.lp + p * DIM, S);
     if (bodies) S.node0 += P.body[p] * GridDof::NDOF;
     const double m = P.mass[p], V = P.vol[p];
     const double mv0 = m * P.v[p * DIM], mv1 = m * P.v[p * DIM + 1];
+    double mB[DIM * DIM] = {0, 0, 0, 0};
+    if (Affine)
+      for (int e = 0; e < DIM * DIM; ++e) mB[e] = m * P.B[p * DIM * DIM + e];
     const double *s = P.stress + p * NSTRESS;
     // internal force -V sigma . grad S (eq. 9; with PMPM weights eq. 14)
     const double sxx = V * s[0], syy = V * s[1], sxy = V * s[3];
@@ -77,6 +89,11 @@ void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const 
         node[GridDof::M] += w * m;
         node[GridDof::P + 0] += w * mv0;
         node[GridDof::P + 1] += w * mv1;
+        if (Affine) { // m B a_ip, a_ip = (ax wy, wx ay) = w D^-1 (x_i - x_p)
+          const double a0 = S.ax[a] * wy, a1 = S.wx[a] * S.ay[b];
+          node[GridDof::P + 0] += mB[0] * a0 + mB[1] * a1;
+          node[GridDof::P + 1] += mB[2] * a0 + mB[3] * a1;
+        }
         node[GridDof::F + 0] += w * fb0 - (sxx * gx + sxy * gy);
         node[GridDof::F + 1] += w * fb1 - (sxy * gx + syy * gy);
         node[GridDof::FEXT + 0] += w * fb0;
@@ -91,10 +108,15 @@ void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const 
 template <class Shape>
 void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
          PetscInt nidx) {
-  if (G.nbody > 1)
-    p2g_impl<Shape, true>(P, load, G, idx, nidx);
+  const bool multi = G.nbody > 1, affine = P.B != nullptr;
+  if (multi && affine)
+    p2g_impl<Shape, true, true>(P, load, G, idx, nidx);
+  else if (multi)
+    p2g_impl<Shape, true, false>(P, load, G, idx, nidx);
+  else if (affine)
+    p2g_impl<Shape, false, true>(P, load, G, idx, nidx);
   else
-    p2g_impl<Shape, false>(P, load, G, idx, nidx);
+    p2g_impl<Shape, false, false>(P, load, G, idx, nidx);
 }
 
 void p2g_traction(const ParticleView &P, const std::vector<ParticleLoad> &loads,
@@ -224,8 +246,9 @@ namespace {
 enum class G2PMode { Fused, Velocity, Kinematics };
 
 // One particle loop for the three G2P variants: gather from the nodes (velocity, acceleration,
-// velocity gradient), then the FLIP/PIC velocity update and/or the kinematics.
-template <class Shape, G2PMode mode, bool Multi>
+// velocity gradient), then the FLIP/PIC velocity update and/or the kinematics. Affine (APIC,
+// affine.hpp): the velocity is the grid's (PIC, no FLIP part) and B = sum_i w v_i (x_i - x_p)^T.
+template <class Shape, G2PMode mode, bool Multi, bool Affine>
 void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, const Grid *grid,
              const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats *st) {
   const int ND = Multi ? G0.nd : GridDof::NDOF;
@@ -240,9 +263,10 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
   for (PetscInt p = 0; p < P.n; ++p) {
     double *x = P.x + p * DIM, *v = P.v + p * DIM;
     const GridView &G = (G1 && P.colour[p] > 0.5) ? *G1 : G0; // interface body field
-    stencil<Shape>(G, x, P.lp + p * DIM, S);
+    stencil<Shape, Affine && vel>(G, x, P.lp + p * DIM, S);
     if (bodies) S.node0 += P.body[p] * GridDof::NDOF;
     double vg0 = 0, vg1 = 0, ag0 = 0, ag1 = 0, L0 = 0, L1 = 0, L2 = 0, L3 = 0;
+    double Bn[DIM * DIM] = {0, 0, 0, 0};
     for (int b = 0; b < S.ny; ++b) {
       const double *r = S.node0 + b * row;
       const double wy = S.wy[b], dwy = S.dwy[b];
@@ -252,9 +276,16 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
         const double nv0 = node[GridDof::P], nv1 = node[GridDof::P + 1];
         vg0 += w * nv0;
         vg1 += w * nv1;
-        if (vel) {
+        if (vel && !Affine) {
           ag0 += w * node[GridDof::F];
           ag1 += w * node[GridDof::F + 1];
+        }
+        if (vel && Affine) {
+          const double wv0 = w * nv0, wv1 = w * nv1, rx = S.rx[a], ry = S.ry[b];
+          Bn[0] += wv0 * rx;
+          Bn[1] += wv0 * ry;
+          Bn[2] += wv1 * rx;
+          Bn[3] += wv1 * ry;
         }
         if (kin) { // velocity gradient, eq. 20 with PMPM weights
           const double gx = S.dwx[a] * wy, gy = S.wx[a] * dwy;
@@ -265,7 +296,11 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
         }
       }
     }
-    if (vel) { // FLIP (eq. 4) with an optional PIC blend
+    if (vel && Affine) { // APIC
+      v[0] = vg0;
+      v[1] = vg1;
+      for (int k = 0; k < DIM * DIM; ++k) P.B[p * DIM * DIM + k] = Bn[k];
+    } else if (vel) { // FLIP (eq. 4) with an optional PIC blend
       v[0] = (1.0 - pic) * (v[0] + dt * ag0) + pic * vg0;
       v[1] = (1.0 - pic) * (v[1] + dt * ag1) + pic * vg1;
     }
@@ -287,6 +322,12 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
     P.vol[p] = J * P.vol0[p];
     const double speed2 = v[0] * v[0] + v[1] * v[1];
     st->kinetic += 0.5 * P.mass[p] * speed2;
+    if (Affine && vel) { // the affine part, with the D_p that B_p was just taken at
+      double D[DIM] = {0, 0};
+      for (int a = 0; a < S.nx; ++a) D[0] += S.wx[a] * S.rx[a] * S.rx[a];
+      for (int b = 0; b < S.ny; ++b) D[1] += S.wy[b] * S.ry[b] * S.ry[b];
+      st->kinetic += affine_kinetic(P.mass[p], P.B + p * DIM * DIM, D);
+    }
     st->weight_power += P.weight[p] * (prm.gdir[0] * v[0] + prm.gdir[1] * v[1]);
     // Instability and escape checks, reported by the caller with the particle's id. The centre
     // must stay on the grid (the ghosted DMDA has room for the support beyond it).
@@ -325,10 +366,15 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
 template <class Shape, G2PMode mode>
 void g2p_impl(const ParticleView &P, const GridView &G0, const GridView *G1, const Grid *grid,
               const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats *st) {
-  if (G0.nbody > 1)
-    g2p_one<Shape, mode, true>(P, G0, G1, grid, prm, wave_modulus, dudx, st);
+  const bool multi = G0.nbody > 1, affine = P.B != nullptr;
+  if (multi && affine)
+    g2p_one<Shape, mode, true, true>(P, G0, G1, grid, prm, wave_modulus, dudx, st);
+  else if (multi)
+    g2p_one<Shape, mode, true, false>(P, G0, G1, grid, prm, wave_modulus, dudx, st);
+  else if (affine)
+    g2p_one<Shape, mode, false, true>(P, G0, G1, grid, prm, wave_modulus, dudx, st);
   else
-    g2p_one<Shape, mode, false>(P, G0, G1, grid, prm, wave_modulus, dudx, st);
+    g2p_one<Shape, mode, false, false>(P, G0, G1, grid, prm, wave_modulus, dudx, st);
 }
 } // namespace
 
@@ -350,6 +396,7 @@ void g2p(const ParticleView &P, const GridView &G, const GridView *G1, const Gri
   g2p_impl<Shape, G2PMode::Fused>(P, G, G1, &grid, prm, wave_modulus, dudx, &st);
 }
 
+// (no affine term: SimulationSetup refuses -musl with -transfer apic)
 template <class Shape> void p2g_momentum(const ParticleView &P, const GridView &G) {
   constexpr int NS = Shape::NS;
   Weights<Shape> W;

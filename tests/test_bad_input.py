@@ -13,6 +13,9 @@ c = Checks("bad_input")
 cases = [
     ("unknown shape", ["-options_file", "options/bar.opts", "-shape", "quadratic"], "-shape"),
     ("unknown scene", ["-scene", "tunnel", "-cell_size", "0.1"], "-scene"),
+    ("unknown transfer", ["-options_file", "options/bar.opts", "-transfer", "mls"], "-transfer"),
+    ("APIC with MUSL", ["-options_file", "options/bar.opts", "-transfer", "apic", "-musl"],
+     "-transfer apic"),
     ("negative modulus", ["-options_file", "options/bar.opts", "-mat_bar_E", "-5"], "-mat_bar_E"),
     ("Poisson ratio 0.5", ["-options_file", "options/bar.opts", "-mat_bar_nu", "0.5"],
      "-mat_bar_nu"),

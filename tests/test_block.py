@@ -18,9 +18,10 @@ Bounds, each checked at every step by the scene (largest mismatch over the run):
   >= 3 times in translation (measured 3) and rank 0 holds none and then all of the block;
 - the centre follows the rigid motion x = 0.5 + (v0 T / 2 pi) sin(2 pi t / T) to 1e-3 m
   (measured 5.4e-6 m: the force is applied at mid-step).
-Angular momentum is not conserved by the PIC/FLIP transfers (no affine/APIC term): the rotating
-block lost 34 % in 3.2 turns with pure FLIP at 2 particles per cell (7 % at 4 per cell, all of it
-with -pic 0.05). Bound: a loss below 50 %, a regression guard, not a conservation check.
+Angular momentum is not conserved by the PIC/FLIP transfers (-transfer apic keeps it:
+test_apic.py): the rotating block lost 34 % in 3.2 turns with pure FLIP at 2 particles per cell
+(7 % at 4 per cell, all of it with -pic 0.05). Bound: a loss below 50 %, a regression guard, not a
+conservation check.
 """
 import math
 import sys

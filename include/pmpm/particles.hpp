@@ -28,6 +28,8 @@ struct ParticleView {
   PetscInt *pid = nullptr;  // 1, global particle id (rank-independent)
   PetscInt *body = nullptr; // 1, body on the grid (0 without chains; chain.hpp)
   PetscInt *load = nullptr; // 1, the particle's entry in the run's ParticleLoad table, or -1
+  double *B = nullptr;      // DIM*DIM, APIC affine matrix, row-major (affine.hpp); null
+                            // unless the swarm has it (-transfer apic)
 };
 
 // A surface load on one particle. Few particles carry one (a loaded face's outermost row), so
@@ -63,6 +65,7 @@ using ParticleList = std::deque<ParticleInit>;
 
 struct Particles {
   DM sw = nullptr;
+  bool affine = false; // set before ParticlesCreate: register the APIC matrix B (-transfer apic)
 };
 
 PetscErrorCode ParticlesCreate(Grid &g, Particles &P);
@@ -78,12 +81,14 @@ PetscErrorCode ParticlesMigrate(Particles &P);
 PetscErrorCode ParticlesGlobalCount(Particles &P, PetscInt *n);
 
 // Every per-particle field, the coordinates first: its DMSwarm name, values per particle, and
-// whether it holds integers (PETSC_INT) rather than reals. A checkpoint saves them all.
+// whether it holds integers (PETSC_INT) rather than reals. A checkpoint saves them all. The
+// affine matrix "B" is in the list only when the swarm has it (P.affine).
 struct ParticleFieldInfo {
   const char *name;
   int bs;
   bool integer;
 };
-std::vector<ParticleFieldInfo> ParticlesFieldList();
+std::vector<ParticleFieldInfo> ParticlesFieldList(const Particles &P);
+inline constexpr const char *kAffineField = "B";
 
 } // namespace pmpm

@@ -1,6 +1,7 @@
 // Everything one run holds: settings from the options database, the grid, the particles, the
 // materials, the loads and boundary conditions, and the state of the relaxation.
 #pragma once
+#include "pmpm/affine.hpp"
 #include "pmpm/balance.hpp"
 #include "pmpm/chain.hpp"
 #include "pmpm/degradation.hpp"
@@ -38,6 +39,7 @@ struct Settings {
   double damping_alpha = 0.8;
   PetscInt ramp_steps = 0;
   double pic = 0.05; // a little PIC damps the FLIP velocity noise the grid cannot see
+  Transfer transfer = Transfer::Flip; // -transfer apic: affine transfers (affine.hpp)
   InertiaScaling inertia = InertiaScaling::WaveSpeed;
   double gdir[DIM] = {0.0, -1.0};
   double progress_seconds = 2.0;

@@ -23,6 +23,7 @@ struct Load {
 };
 
 // idx (nidx entries) restricts the sum to some particles (an interface body); null: all.
+// A view with an affine field (P.B, -transfer apic) adds APIC's affine momentum (affine.hpp).
 template <class Shape>
 void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx = nullptr,
          PetscInt nidx = 0);
@@ -72,7 +73,7 @@ struct G2PParams {
 struct G2PStats {
   double max_c = 0, max_v = 0; // max_p c_p and max_p |v_p|
   double max_speed = 0;        // max_c + max_v (bounds c_p + |v_p|; the next stable step)
-  double kinetic = 0;          // particle kinetic energy
+  double kinetic = 0;          // particle kinetic energy (APIC: with the affine part)
   double weight_power = 0;     // sum_p weight_p (gdir . v_p): body-force power per load factor
   PetscInt left_rank = 0;      // particles now centred outside this rank's cells
   PetscInt bad = 0;            // particles with J <= 0, a non-finite value, or off the grid
@@ -81,7 +82,11 @@ struct G2PStats {
   const char *bad_what = "";
 };
 
-// USL in one pass: g2p_velocity and g2p_kinematics on the same nodal field.
+// USL in one pass: g2p_velocity and g2p_kinematics on the same nodal field. With P.B (APIC) the
+// particle velocity is the nodal one interpolated (prm.pic unused), B_p is gathered, and the
+// kinetic energy in stats includes the affine part; the velocity gradient for the stress update
+// stays the weights' gradient form L = sum_i v_i grad w_ip^T (for linear hats it equals APIC's
+// C_p, for uGIMP it does not: C_p is the L2-best affine fit over the block's weights).
 template <class Shape>
 void g2p(const ParticleView &P, const GridView &G, const GridView *G1, const Grid &grid,
          const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats &stats);

@@ -7,7 +7,9 @@
 // v = v0 cos(omega t) sin(beta x), omega = beta sqrt(E / rho), centre-of-mass velocity
 // (2 v0 / pi) cos(omega t), energy rho v0^2 L B / 4 constant. The period is measured from the
 // zero crossings of the centre-of-mass velocity; the energy is kinetic + elastic
-// (V sigma : C^-1 : sigma / 2) at every step.
+// (V sigma : C^-1 : sigma / 2) at every step. With -transfer apic the particles start with the
+// field's gradient as their affine part (B_p = C D_p) and the kinetic energy includes it
+// (affine_kinetic, at the particles' current D_p).
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
 #include "pmpm/output.hpp"
@@ -101,7 +103,12 @@ public:
     PetscCall(ParticlesGetView(sim.parts, P));
     for (PetscInt p = 0; p < P.n; ++p) {
       double *v = P.v + p * DIM;
-      if (sim.run.step == 0) v[0] = v0_ * std::sin(beta() * P.x0[p * DIM]);
+      double D[DIM] = {0, 0}, *B = P.B ? P.B + p * DIM * DIM : nullptr;
+      if (B) affine_inertia(sim.set.shape, P.x + p * DIM, P.lp + p * DIM, sim.origin, sim.set.h, D);
+      if (sim.run.step == 0) {
+        v[0] = v0_ * std::sin(beta() * P.x0[p * DIM]);
+        if (B) B[0] = v0_ * beta() * std::cos(beta() * P.x0[p * DIM]) * D[0]; // C D, C = dv/dx
+      }
       const double *q = P.stress + p * NSTRESS;
       const double sq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
       const double cross = q[0] * q[1] + q[1] * q[2] + q[2] * q[0];
@@ -109,6 +116,7 @@ public:
       s[1] += P.mass[p] * v[0];
       s[2] += 0.5 * P.mass[p] * (v[0] * v[0] + v[1] * v[1]) +
               P.vol[p] * (sq - 2 * c.nu * cross + 2 * (1 + c.nu) * q[3] * q[3]) / (2 * c.E);
+      if (B) s[2] += affine_kinetic(P.mass[p], B, D); // APIC: the affine part (affine.hpp)
     }
     PetscCall(ParticlesRestoreView(sim.parts, P));
     PetscCall(SumAll(sim.comm, s, 3));

@@ -10,6 +10,10 @@
 // The particle momentum changes exactly by the impulse of the applied forces, sum dt F (internal
 // forces sum to zero by the partition of unity, and P2G / G2P carry momentum unchanged), so the
 // scene records that impulse and reports the mismatch, which is round-off. Use -dynamic.
+// With -transfer apic the particles' spin m_p (B_yx - B_xy) is part of the angular momentum
+// (affine.hpp), and the initial rigid rotation gives each particle its affine part,
+// B_p = C D_p with C = omega [0 -1; 1 0], so that the block starts as one rigid body.
+#include "pmpm/affine.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
@@ -30,7 +34,8 @@ class BlockScene final : public Scene {
   int side_ = 0; // which side of the rank boundary the centre is on (-1, 1; 0: within h/4 of it)
   PetscInt crossings_ = 0, min_local_ = -1, max_local_ = 0;
 
-  // Sums over the block: mass, count, momentum, mass * position, angular momentum about the origin.
+  // Sums over the block: mass, count, momentum, mass * position, angular momentum about the origin
+  // (with APIC the particles' spin too).
   PetscErrorCode sums(Simulation &sim, double s[7]) {
     ParticleView P;
     PetscFunctionBeginUser;
@@ -45,6 +50,7 @@ class BlockScene final : public Scene {
       s[4] += m * x[0];
       s[5] += m * x[1];
       s[6] += m * (x[0] * v[1] - x[1] * v[0]);
+      if (P.B) s[6] += affine_spin(m, P.B + p * DIM * DIM);
     }
     PetscCall(ParticlesRestoreView(sim.parts, P));
     PetscCall(SumAll(sim.comm, s, 7));
@@ -206,6 +212,13 @@ public:
         const double *x = P.x + p * DIM;
         P.v[p * DIM + 0] = v0_[0] - omega_ * (x[1] - xc_[1]);
         P.v[p * DIM + 1] = v0_[1] + omega_ * (x[0] - xc_[0]);
+        if (P.B) { // B = C D for the rigid rotation's gradient C
+          double D[DIM], *B = P.B + p * DIM * DIM;
+          affine_inertia(sim.set.shape, x, P.lp + p * DIM, sim.origin, sim.set.h, D);
+          B[0] = B[3] = 0;
+          B[1] = -omega_ * D[1];
+          B[2] = omega_ * D[0];
+        }
       }
       PetscCall(ParticlesRestoreView(sim.parts, P));
       double lo = sim.grid.cell_lo[0] > 0 ? (double)sim.grid.cell_lo[0] : 1e300;
