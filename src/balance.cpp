@@ -1,5 +1,6 @@
 #include "pmpm/balance.hpp"
 #include "pmpm/output.hpp"
+#include "pmpm/particle_records.hpp"
 #include "pmpm/simulation.hpp"
 #include <algorithm>
 #include <cmath>
@@ -78,6 +79,43 @@ double Imbalance(const std::vector<double> &counts) {
   return total > 0 ? most / (total / counts.size()) : 1.0;
 }
 
+// The particle-balanced partition of px x py ranks for the particles items[k] (positions by
+// pos(item)): cell bounds per rank column and row (empty if the cells are too few) and the
+// imbalance it would have. Every rank bins its own particles.
+template <class Items, class Pos>
+PetscErrorCode Plan(const Simulation &sim, PetscInt px, PetscInt py, const Items &items, Pos pos,
+                    std::vector<PetscInt> &bx, std::vector<PetscInt> &by, double *predicted) {
+  PetscFunctionBeginUser;
+  // particles per cell column, then per cell row
+  const PetscInt nx = sim.ncell[0], ny = sim.ncell[1];
+  std::vector<double> cnt(nx + ny, 0.0);
+  for (const auto &q : items) {
+    cnt[CellOf(sim, pos(q), 0)] += 1;
+    cnt[nx + CellOf(sim, pos(q), 1)] += 1;
+  }
+  PetscCallMPI(
+      MPI_Allreduce(MPI_IN_PLACE, cnt.data(), (int)cnt.size(), MPI_DOUBLE, MPI_SUM, sim.comm));
+  bx = SplitCounts(cnt.data(), nx, px);
+  by = SplitCounts(cnt.data() + nx, ny, py);
+  *predicted = 1e300;
+  if (bx.empty() || by.empty()) {
+    bx.clear();
+    PetscFunctionReturn(0);
+  }
+  std::vector<double> blk(px * py, 0.0);
+  for (const auto &q : items) {
+    const PetscInt i =
+        std::upper_bound(bx.begin(), bx.end(), CellOf(sim, pos(q), 0)) - bx.begin() - 1;
+    const PetscInt j =
+        std::upper_bound(by.begin(), by.end(), CellOf(sim, pos(q), 1)) - by.begin() - 1;
+    blk[j * px + i] += 1;
+  }
+  PetscCallMPI(
+      MPI_Allreduce(MPI_IN_PLACE, blk.data(), (int)blk.size(), MPI_DOUBLE, MPI_SUM, sim.comm));
+  *predicted = Imbalance(blk);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode RankImbalance(MPI_Comm comm, PetscInt n, double *imb) {
   PetscMPIInt size;
   PetscFunctionBeginUser;
@@ -94,17 +132,25 @@ PetscErrorCode BalanceFromOptions(MPI_Comm comm, Balance &b) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Load balance (particles per rank)", nullptr);
   PetscCall(PetscOptionsEnum("-balance",
-                             "Partition: none (PETSc's even split of the nodes) or setup (split "
-                             "the particles per cell column and row evenly, at setup)",
+                             "Partition: none (PETSc's even split of the nodes), setup (split "
+                             "the particles per cell column and row evenly, at setup) or run "
+                             "(setup, and again at a stage's end when -balance_threshold is "
+                             "passed)",
                              nullptr, BalanceModeNames, (PetscEnum)b.mode, (PetscEnum *)&b.mode,
                              nullptr));
   PetscCall(PetscOptionsReal("-balance_gain",
                              "Rebuild the grid only if it lowers the imbalance (max / mean "
                              "particles per rank) by more than this fraction, 0 <= g < 1",
                              nullptr, b.gain, &b.gain, nullptr));
+  PetscCall(PetscOptionsReal("-balance_threshold",
+                             "-balance run: rebalance at a stage's end when max / mean particles "
+                             "per rank exceeds this, >= 1",
+                             nullptr, b.threshold, &b.threshold, nullptr));
   PetscOptionsEnd();
   PetscCheck(b.gain >= 0 && b.gain < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-balance_gain must be in [0, 1) (got %g)", b.gain);
+  PetscCheck(b.threshold >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-balance_threshold must be >= 1 (got %g)", b.threshold);
   PetscFunctionReturn(0);
 }
 
@@ -123,50 +169,96 @@ PetscErrorCode BalanceSetup(Simulation &sim, ParticleList &init) {
   b.after = b.before;
   PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr, nullptr,
                         nullptr, nullptr, nullptr, nullptr, nullptr));
-  if (b.mode == BalanceMode::Setup && sim.size > 1) {
-    // particles per cell column, then per cell row
-    const PetscInt nx = sim.ncell[0], ny = sim.ncell[1];
-    std::vector<double> cnt(nx + ny, 0.0);
-    for (const auto &q : init) {
-      cnt[CellOf(sim, q.x, 0)] += 1;
-      cnt[nx + CellOf(sim, q.x, 1)] += 1;
-    }
-    PetscCallMPI(
-        MPI_Allreduce(MPI_IN_PLACE, cnt.data(), (int)cnt.size(), MPI_DOUBLE, MPI_SUM, sim.comm));
-    const std::vector<PetscInt> bx = SplitCounts(cnt.data(), nx, px),
-                                by = SplitCounts(cnt.data() + nx, ny, py);
-    if (!bx.empty() && !by.empty()) {
-      // the imbalance that partition would have (every rank bins its particles)
-      std::vector<double> blk(px * py, 0.0);
-      for (const auto &q : init) {
-        const PetscInt i =
-            std::upper_bound(bx.begin(), bx.end(), CellOf(sim, q.x, 0)) - bx.begin() - 1;
-        const PetscInt j =
-            std::upper_bound(by.begin(), by.end(), CellOf(sim, q.x, 1)) - by.begin() - 1;
-        blk[j * px + i] += 1;
-      }
-      PetscCallMPI(
-          MPI_Allreduce(MPI_IN_PLACE, blk.data(), (int)blk.size(), MPI_DOUBLE, MPI_SUM, sim.comm));
-      if (Imbalance(blk) < b.before * (1 - b.gain)) {
-        const std::vector<PetscInt> lx = NodeCounts(bx), ly = NodeCounts(by);
-        const bool iface = sim.iface_grid.active;
-        const int extra = sim.grid.nd - sim.grid.nbody * GridDof::NDOF;
-        PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
-        PetscCall(InterfaceGridDestroy(sim.iface_grid));
-        PetscCall(GridDestroy(sim.grid));
-        PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, sim.grid.nbody, extra,
-                             sim.grid, px, py, lx.data(), ly.data()));
-        if (iface) PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
-        PetscCall(ParticlesCreate(sim.grid, sim.parts));
-        init.clear();
-        PetscCall(sim.scene->generate(sim, init));
-        PetscCall(RankImbalance(sim.comm, (PetscInt)init.size(), &b.after));
-        b.rebuilt = true;
-      }
+  if (b.mode != BalanceMode::None && sim.size > 1) {
+    std::vector<PetscInt> bx, by;
+    double predicted = 1e300;
+    PetscCall(Plan(
+        sim, px, py, init, [](const ParticleInit &q) { return q.x; }, bx, by, &predicted));
+    if (!bx.empty() && predicted < b.before * (1 - b.gain)) {
+      PetscCall(BalanceRebuildGrid(sim, px, py, NodeCounts(bx), NodeCounts(by)));
+      init.clear();
+      PetscCall(sim.scene->generate(sim, init));
+      PetscCall(RankImbalance(sim.comm, (PetscInt)init.size(), &b.after));
+      b.rebuilt = true;
     }
   }
   double dt = MPI_Wtime() - t0;
   PetscCallMPI(MPI_Allreduce(&dt, &b.seconds, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
+  PetscCall(PetscLogEventEnd(ev_balance, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BalanceRebuildGrid(Simulation &sim, PetscInt px, PetscInt py,
+                                  const std::vector<PetscInt> &lx,
+                                  const std::vector<PetscInt> &ly) {
+  PetscFunctionBeginUser;
+  const bool iface = sim.iface_grid.active;
+  const int nbody = sim.grid.nbody, extra = sim.grid.nd - nbody * GridDof::NDOF;
+  PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
+  PetscCall(InterfaceGridDestroy(sim.iface_grid));
+  PetscCall(GridDestroy(sim.grid));
+  PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody, extra, sim.grid, px, py,
+                       lx.data(), ly.data()));
+  if (iface) PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
+  PetscCall(ParticlesCreate(sim.grid, sim.parts));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BalancePartition(Simulation &sim, std::vector<PetscInt> &part) {
+  PetscInt px, py;
+  const PetscInt *lx, *ly;
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr, nullptr,
+                        nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(sim.grid.da, &lx, &ly, nullptr));
+  part = {px, py};
+  part.insert(part.end(), lx, lx + px);
+  part.insert(part.end(), ly, ly + py);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BalanceRun(Simulation &sim) {
+  Balance &b = sim.balance;
+  PetscInt px, py, n;
+  PetscFunctionBeginUser;
+  if (b.mode != BalanceMode::Run || sim.size == 1) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(ev_balance, 0, 0, 0, 0));
+  const double t0 = MPI_Wtime();
+  PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
+  double now;
+  PetscCall(RankImbalance(sim.comm, n, &now));
+  if (now > b.threshold) {
+    PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr,
+                          nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
+    ParticleView P;
+    PetscCall(ParticlesGetView(sim.parts, P));
+    std::vector<PetscInt> idx(P.n), bx, by;
+    for (PetscInt p = 0; p < P.n; ++p) idx[p] = p;
+    const double *x = P.x;
+    double predicted = 1e300;
+    PetscCall(Plan(
+        sim, px, py, idx, [x](PetscInt p) { return x + p * DIM; }, bx, by, &predicted));
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    if (!bx.empty() && predicted < now * (1 - b.gain)) {
+      std::vector<double> rec;
+      PetscCall(ParticlesPack(sim.parts, rec));
+      PetscCall(BalanceRebuildGrid(sim, px, py, NodeCounts(bx), NodeCounts(by)));
+      PetscCall(RecordsRedistribute(sim.comm, sim.grid, ParticleRecordWidth(sim.parts), rec));
+      PetscCall(ParticlesUnpack(sim.parts, rec));
+      PetscCall(SimulationIndexParticles(sim));
+      PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
+      b.last_before = now;
+      PetscCall(RankImbalance(sim.comm, n, &b.last_after));
+      ++b.rebalances;
+      if (!sim.set.quiet)
+        PetscCall(PetscPrintf(sim.comm,
+                              "stage %d: rebalanced, particles per rank max/mean %.3f -> %.3f\n",
+                              (int)sim.stage, b.last_before, b.last_after));
+    }
+  }
+  double dt = MPI_Wtime() - t0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dt, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
+  b.run_seconds += dt;
   PetscCall(PetscLogEventEnd(ev_balance, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -195,7 +287,11 @@ PetscErrorCode PartitionJson(Simulation &sim, std::string &json) {
          json_kv("gain", b.gain) + sep + json_kv("imbalance_before", b.before) + sep +
          json_kv("imbalance_after", b.after) + sep +
          json_kv("rebuilt", b.rebuilt ? "true" : "false") + sep + json_kv("seconds", b.seconds) +
-         "\n  }";
+         sep + json_kv("threshold", b.threshold) + sep +
+         json_kv("rebalances", static_cast<double>(b.rebalances)) + sep +
+         json_kv("last_imbalance_before", b.last_before) + sep +
+         json_kv("last_imbalance_after", b.last_after) + sep +
+         json_kv("run_seconds", b.run_seconds) + "\n  }";
   PetscFunctionReturn(0);
 }
 

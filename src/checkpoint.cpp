@@ -10,6 +10,7 @@
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/parallel_h5.hpp"
+#include "pmpm/particle_records.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -218,51 +219,6 @@ PetscErrorCode CheckFile(MPI_Comm comm, PetscMPIInt rank, const std::string &fil
   PetscFunctionReturn(0);
 }
 
-// Particles read as blocks of another rank count go to the ranks owning their cells: records of
-// w values (the coordinates first), exchanged all-to-all in rank order.
-PetscErrorCode Redistribute(Simulation &sim, PetscInt w, std::vector<double> &rec) {
-  const Grid &g = sim.grid;
-  const int size = sim.size;
-  std::vector<PetscInt> box(4 * size);
-  PetscInt mine[4] = {g.cell_lo[0], g.cell_hi[0], g.cell_lo[1], g.cell_hi[1]};
-  PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Allgather(mine, 4, MPIU_INT, box.data(), 4, MPIU_INT, sim.comm));
-  const size_t n = rec.size() / w;
-  std::vector<int> dest(n), scount(size, 0), rcount(size), sdisp(size), rdisp(size);
-  for (size_t p = 0; p < n; ++p) {
-    PetscInt c[DIM];
-    for (int d = 0; d < DIM; ++d) {
-      c[d] = static_cast<PetscInt>((rec[p * w + d] - g.origin[d]) / g.h);
-      c[d] = std::min(std::max(c[d], (PetscInt)0), g.ncell[d] - 1);
-    }
-    int r = 0;
-    while (r < size && !(c[0] >= box[4 * r] && c[0] < box[4 * r + 1] && c[1] >= box[4 * r + 2] &&
-                         c[1] < box[4 * r + 3]))
-      ++r;
-    PetscCheck(r < size, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no rank owns cell (%d, %d)", (int)c[0],
-               (int)c[1]);
-    dest[p] = r;
-    scount[r] += static_cast<int>(w);
-  }
-  PetscCallMPI(MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, sim.comm));
-  int st = 0, rt = 0;
-  for (int r = 0; r < size; ++r) {
-    sdisp[r] = st;
-    rdisp[r] = rt;
-    st += scount[r];
-    rt += rcount[r];
-  }
-  std::vector<double> send(static_cast<size_t>(st)), recv(static_cast<size_t>(rt));
-  std::vector<int> at(sdisp);
-  for (size_t p = 0; p < n; ++p) {
-    std::copy(rec.begin() + p * w, rec.begin() + (p + 1) * w, send.begin() + at[dest[p]]);
-    at[dest[p]] += static_cast<int>(w);
-  }
-  PetscCallMPI(MPI_Alltoallv(send.data(), scount.data(), sdisp.data(), MPI_DOUBLE, recv.data(),
-                             rcount.data(), rdisp.data(), MPI_DOUBLE, sim.comm));
-  rec.swap(recv);
-  PetscFunctionReturn(0);
-}
 } // namespace
 
 PetscErrorCode CheckpointWriteArray(PetscViewer v, const char *name, const std::vector<double> &a) {
@@ -357,6 +313,9 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   PetscCall(PutReal(v, R, "wall_seconds", r.wall_seconds));
   PetscCall(PutReal(v, R, "stage_seconds", r.stage_seconds));
   PetscCall(PutInt(v, R, "migrations", r.migrations));
+  PetscCall(PutInt(v, R, "rebalances", sim.balance.rebalances));
+  PetscCall(PutReal(v, R, "rebalance_before", sim.balance.last_before));
+  PetscCall(PutReal(v, R, "rebalance_after", sim.balance.last_after));
   PetscCall(PutInt(v, R, "kinetic_resets", r.kinetic_resets));
   PetscCall(PutReal(v, R, "c0", r.c0));
   PetscCall(PutReal(v, R, "ke_window", r.ke_window));
@@ -381,6 +340,10 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   for (const ParticleLoad &L : sim.loads)
     for (const double *a : {L.traction, L.tface, L.lp}) loads.insert(loads.end(), a, a + DIM);
   PetscCall(CheckpointWriteArray(v, "loads", loads));
+  // the partition the particles' blocks belong to (-balance run may have moved it)
+  std::vector<PetscInt> part;
+  PetscCall(BalancePartition(sim, part));
+  PetscCall(CheckpointWriteArray(v, "partition", std::vector<double>(part.begin(), part.end())));
   PetscCall(PetscViewerHDF5PopGroup(v));
 
   // particles: each field as the ranks' blocks in rank order, and the block sizes
@@ -534,6 +497,9 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
   PetscCall(GetReal(v, R, "wall_seconds", file, &r.wall_seconds));
   PetscCall(GetReal(v, R, "stage_seconds", file, &r.stage_seconds));
   PetscCall(GetInt(v, R, "migrations", file, &r.migrations));
+  PetscCall(GetInt(v, R, "rebalances", file, &sim.balance.rebalances));
+  PetscCall(GetReal(v, R, "rebalance_before", file, &sim.balance.last_before));
+  PetscCall(GetReal(v, R, "rebalance_after", file, &sim.balance.last_after));
   PetscCall(GetInt(v, R, "kinetic_resets", file, &r.kinetic_resets));
   PetscCall(GetReal(v, R, "c0", file, &r.c0));
   PetscCall(GetReal(v, R, "ke_window", file, &r.ke_window));
@@ -577,6 +543,23 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
     c.compression = cs[3];
     c.tension = cs[4];
     c.friction.assign(cs.begin() + 5, cs.end());
+    // on the same rank count each rank takes back its own block of particles: the grid must be
+    // partitioned as when the checkpoint was written (-balance run may have moved it since setup)
+    std::vector<double> saved;
+    std::vector<PetscInt> part;
+    PetscCall(CheckpointReadArray(v, "partition", saved));
+    PetscCall(BalancePartition(sim, part));
+    const std::vector<PetscInt> want(saved.begin(), saved.end());
+    if (ranks == sim.size && want != part) {
+      PetscCheck(want.size() >= 2 && (PetscInt)want.size() == 2 + want[0] + want[1] &&
+                     want[0] * want[1] == sim.size,
+                 sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+                 "-restart %s: damaged checkpoint (/run/partition)", F);
+      PetscCall(
+          BalanceRebuildGrid(sim, want[0], want[1],
+                             std::vector<PetscInt>(want.begin() + 2, want.begin() + 2 + want[0]),
+                             std::vector<PetscInt>(want.begin() + 2 + want[0], want.end())));
+    }
   }
   PetscCall(PetscViewerHDF5PopGroup(v));
 
@@ -632,26 +615,8 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
       PetscCall(VecDestroy(&x));
       off += f.bs;
     }
-    if (ranks != sim.size) PetscCall(Redistribute(sim, w, rec));
-    nloc = static_cast<PetscInt>(rec.size()) / w;
-    PetscCall(DMSwarmSetLocalSizes(sim.parts.sw, nloc, 1000));
-    off = 0;
-    for (const auto &f : fields) {
-      void *data;
-      PetscInt bs;
-      PetscDataType type;
-      PetscCall(DMSwarmGetField(sim.parts.sw, f.name, &bs, &type, &data));
-      for (PetscInt p = 0; p < nloc; ++p)
-        for (PetscInt b = 0; b < f.bs; ++b) {
-          const double x = rec[p * w + off + b];
-          if (f.integer)
-            static_cast<PetscInt *>(data)[p * f.bs + b] = static_cast<PetscInt>(x);
-          else
-            static_cast<double *>(data)[p * f.bs + b] = x;
-        }
-      PetscCall(DMSwarmRestoreField(sim.parts.sw, f.name, &bs, &type, &data));
-      off += f.bs;
-    }
+    if (ranks != sim.size) PetscCall(RecordsRedistribute(sim.comm, sim.grid, w, rec));
+    PetscCall(ParticlesUnpack(sim.parts, rec));
     PetscCall(SimulationIndexParticles(sim));
   }
   PetscCall(PetscViewerHDF5PopGroup(v));

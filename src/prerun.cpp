@@ -14,13 +14,13 @@ constexpr double kGiB = 1073741824.0;
 // per node besides the nodal vectors: coordinates (2 doubles, global and local) and the
 // local-to-global map and scatter indices
 constexpr double kGridBytesPerNode = 2 * DIM * 8 + 16;
-// per particle: 26 doubles and 3 PetscInt of pmpm's swarm fields (particles.cpp), DMSwarm's own
-// (coordinates' id, rank, cell: 16), and the larger of the setup's ParticleInit copy and the
-// run's scratch (velocity gradient 4 doubles, eigenstrain 3, index 1 int) plus the output's
-// copies (displacement, material, id, one field: 8 doubles); -transfer apic adds B (4 doubles)
-constexpr double kParticleBytes =
-    26 * 8 + 3 * sizeof(PetscInt) + 16 +
-    (sizeof(ParticleInit) > (7 + 8) * 8 + 4 ? sizeof(ParticleInit) : (7 + 8) * 8 + 4);
+// per particle: pmpm's swarm fields (particles.cpp: 22 doubles and 4 PetscInt) and DMSwarm's own
+// (coordinates' id, rank, cell: 16 B), 208 B; and the setup's transient, the generated list
+// (sizeof(ParticleInit)) while the swarm grows, with the swarm's reallocation slack (16 B): the
+// run's scratch (velocity gradient 4 doubles, material index) comes after the list is gone and
+// is smaller. Measured: 340 B per particle marginal peak on the column at 1-4 M particles
+// (BENCHMARKS.md, memory per particle). -transfer apic adds B (4 doubles).
+constexpr double kParticleBytes = 22 * 8 + 4 * sizeof(PetscInt) + 16 + sizeof(ParticleInit) + 16;
 
 // per rank: the libraries, MPI's buffers and PETSc's objects (the resident size of a 1-rank run
 // of options/bar.opts, 47 MB)

@@ -29,6 +29,7 @@ PetscErrorCode RunStages(Simulation &sim) {
     sim.run.all_converged = sim.run.all_converged && sim.run.converged;
     PetscCall(sim.scene->end_stage(sim, k));
     if (sim.scene->finished()) break;
+    if (k < n) PetscCall(BalanceRun(sim)); // -balance run: the partition follows the particles
     // after the scene's record: a checkpoint at every stage's end, or at a -checkpoint_every step
     // that ended the stage (Relax writes the others)
     const PetscInt every = sim.set.checkpoint_every;

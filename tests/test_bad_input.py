@@ -82,6 +82,8 @@ cases = [
      "-balance"),
     ("balance gain out of range", ["-options_file", "options/bar.opts", "-balance_gain", "1"],
      "-balance_gain"),
+    ("balance threshold below 1",
+     ["-options_file", "options/bar.opts", "-balance_threshold", "0.9"], "-balance_threshold"),
     ("misspelled option", ["-options_file", "options/bar.opts", "-cell_sise", "0.001"],
      "-cell_sise"),
     ("an option of another material model", ["-options_file", "options/bar.opts",

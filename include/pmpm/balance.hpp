@@ -19,9 +19,9 @@ namespace pmpm {
 
 struct Simulation;
 
-enum class BalanceMode { None = 0, Setup = 1 };
-inline constexpr const char *BalanceModeNames[] = {"none", "setup", "BalanceMode", "BALANCE_",
-                                                   nullptr};
+enum class BalanceMode { None = 0, Setup = 1, Run = 2 };
+inline constexpr const char *BalanceModeNames[] = {"none",        "setup",    "run",
+                                                   "BalanceMode", "BALANCE_", nullptr};
 
 struct Balance {
   BalanceMode mode = BalanceMode::Setup;
@@ -30,6 +30,12 @@ struct Balance {
   double after = 1.0;   // imbalance on the partition the run uses (after setup)
   double seconds = 0.0; // wall time of the balancing: counting, planning, rebuild, regeneration
   bool rebuilt = false; // the grid was recreated with particle-balanced lx, ly
+  // -balance run: at every stage's end, rebalance when the imbalance exceeds the threshold
+  double threshold = 1.1;   // -balance_threshold
+  PetscInt rebalances = 0;  // rebuilds during the run
+  double last_before = 1.0; // the imbalance before the last of them
+  double last_after = 1.0;  // and after it
+  double run_seconds = 0.0; // wall time of the run's checks and rebuilds
 };
 
 // Read -balance and -balance_gain (every run reads them).
@@ -38,6 +44,18 @@ PetscErrorCode BalanceFromOptions(MPI_Comm comm, Balance &b);
 // imbalance and, if the particle-balanced partition pays, recreates the grid (and the interface
 // grid and the swarm on it) and generates init again.
 PetscErrorCode BalanceSetup(Simulation &sim, ParticleList &init);
+// -balance run, at a stage's end (rank-collective): if the imbalance exceeds -balance_threshold
+// and the particle-balanced partition lowers it by more than -balance_gain, the grid is rebuilt
+// with that partition and the particles move to the ranks owning their cells (particle_records).
+// Nothing else changes: the nodal fields are rebuilt from the particles every step.
+PetscErrorCode BalanceRun(Simulation &sim);
+// Recreate the grid (and the interface grid, and an empty swarm on it) with px x py ranks owning
+// lx, ly nodes per rank column and row.
+PetscErrorCode BalanceRebuildGrid(Simulation &sim, PetscInt px, PetscInt py,
+                                  const std::vector<PetscInt> &lx, const std::vector<PetscInt> &ly);
+// The current partition as [px, py, lx..., ly...] (a checkpoint keeps it).
+PetscErrorCode BalancePartition(Simulation &sim, std::vector<PetscInt> &part);
+
 // The "partition" and "balance" blocks of summary.json (rank-collective): process grid, owned
 // nodes per rank column and row, the cell ranges they own, particles per rank and the imbalance
 // now; the setup balancing's imbalance before and after.

@@ -8,7 +8,7 @@ struct StepReport {
   GridStats grid;
   G2PStats g2p;
   InterfaceStats iface;
-  ContactStats contact; // chains only
+  ContactStats contact;   // chains only
   double eigen_power = 0; // this rank's power of the imposed eigenstrain (degradation.hpp)
 };
 

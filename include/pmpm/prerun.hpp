@@ -17,8 +17,8 @@ PetscErrorCode CheckOutputDir(MPI_Comm comm, const std::string &dir);
 //   grid:      nodes x values per node x 8 x 2 (the local, ghosted, and the global vector), plus
 //              the coordinates and PETSc's index maps (kGridBytesPerNode), plus the interface
 //              grid's two vectors when an interface is on;
-//   particles: count x kParticleBytes (the swarm's fields, DMSwarm's own, and the larger of the
-//              setup's ParticleInit copy and the run's per-particle scratch and output copies).
+//   particles: count x kParticleBytes (the swarm's fields, DMSwarm's own, and the setup's
+//              generated list while the swarm grows; the run's scratch is smaller).
 // Compared per node (ranks sharing memory, MPI_COMM_TYPE_SHARED) with -memory_limit, by default
 // the node's MemAvailable (/proc/meminfo), or its cgroup's remaining limit if lower.
 struct MemoryCheck {
