@@ -9,8 +9,8 @@ Reads from each OUTDIR (as written by `-scene trapdoor`):
     summary.json      H, B, Terzaghi's arching over gamma H for K = 1 and K = Ka (results)
     particles.h5      the final particles (deformed shape, eps_p)
 Writes into the first OUTDIR:
-    trapdoor.png            the curves (one per OUTDIR, labelled H/B), each with its Terzaghi
-                            K = 1 (dashed) and K = Ka (dotted) levels in the same colour
+    trapdoor.png            the curves (one per OUTDIR; a colour per H/B, dash-dot with F-bar),
+                            with Terzaghi's K = 1 (dashed) and K = Ka (dotted) levels per H/B
     trapdoor_deformed.png   the first OUTDIR's final particles, each drawn as its deformed domain
                             filled by its equivalent plastic strain (plot_cover.py's drawing),
                             in a window 2.5 B wide around the door
@@ -44,24 +44,33 @@ def read_run(outdir):
     p = [float(r["pressure_over_gammaH"]) for r in rows]
     with open(os.path.join(outdir, "summary.json")) as f:
         res = json.load(f)["results"]
+    # runs written before the scene reported it: F-bar from the directory's name
+    res.setdefault("fbar", 1.0 if "fbar" in os.path.basename(os.path.normpath(outdir)) else 0.0)
     return d, p, res
 
 
 def plot_curves(runs, path):
+    """One colour per H/B: solid without F-bar, dash-dot with; Terzaghi K = 1 (dashed) and
+    K = Ka (dotted) once per H/B."""
     fig, ax = plt.subplots(figsize=(7.5, 4.8))
-    for k, (d, p, res) in enumerate(runs):
-        col = f"C{k}"
+    colours, drawn = {}, set()
+    for d, p, res in runs:
         hb = res["height"] / res["door_width"]
-        ax.plot([100 * x for x in d], p, "o-", color=col, ms=3.5, label=f"pmpm, H/B = {hb:g}")
-        ax.axhline(res["terzaghi_K1"], color=col, ls="--", lw=1,
-                   label=f"Terzaghi K = 1 ({res['terzaghi_K1']:.3f})")
-        ax.axhline(res["terzaghi_Ka"], color=col, ls=":", lw=1.2,
-                   label=f"Terzaghi K = Ka ({res['terzaghi_Ka']:.3f})")
+        col = colours.setdefault(hb, f"C{len(colours)}")
+        fb = res["fbar"] > 0
+        ax.plot([100 * x for x in d], p, "s-." if fb else "o-", color=col, ms=3.0, lw=1.2,
+                label=f"pmpm, H/B = {hb:g}" + (", F-bar" if fb else ""))
+        if hb not in drawn:
+            drawn.add(hb)
+            ax.axhline(res["terzaghi_K1"], color=col, ls="--", lw=0.9,
+                       label=f"Terzaghi K = 1 ({res['terzaghi_K1']:.3f})")
+            ax.axhline(res["terzaghi_Ka"], color=col, ls=":", lw=1.1,
+                       label=f"Terzaghi K = Ka ({res['terzaghi_Ka']:.3f})")
     ax.set_xlabel("door displacement / B (%)")
     ax.set_ylabel("pressure on the door / gamma H")
     ax.set_ylim(0, 1.05)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7.5, loc="upper right", ncol=1 if len(runs) == 1 else 2)
+    ax.legend(fontsize=7, loc="upper right", ncol=2 if len(runs) > 1 else 1)
     ax.set_title(f"Active trapdoor, phi = {runs[0][2]['phi']:g} deg, c = 0", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=150)

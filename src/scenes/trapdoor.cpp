@@ -277,7 +277,8 @@ public:
            json_kv("soil_half_width", W_) + sep + json_kv("gamma", gamma(sim)) + sep +
            json_kv("phi", dp.phi_deg) + sep + json_kv("cohesion", dp.cohesion) + sep +
            json_kv("Ka", ka(sim)) + sep + json_kv("terzaghi_K1", terzaghi_ratio(sim, 1.0)) + sep +
-           json_kv("terzaghi_Ka", terzaghi_ratio(sim, ka(sim)));
+           json_kv("terzaghi_Ka", terzaghi_ratio(sim, ka(sim))) + sep +
+           json_kv("fbar", sim.set.fbar ? 1.0 : 0.0);
     if (!rec_p_.empty()) json += sep + json_kv("initial_ratio", rec_p_[0] / gh);
     if (kmin > 0)
       json += sep + json_kv("min_ratio", rec_p_[kmin] / gh) + sep +
