@@ -23,6 +23,8 @@ if (($#)); then
   if compgen -G "$out/chain_*.csv" > /dev/null; then /usr/bin/python3 scripts/plot_chain.py "$out"; fi
   # a staged cover: the stage history and the deformed cover coloured by plastic strain
   if [ -f "$out/stages.csv" ]; then /usr/bin/python3 scripts/plot_cover.py "$out"; fi
+  # the trapdoor: its ground reaction curve and deformed shape
+  if [ -f "$out/trapdoor.csv" ]; then /usr/bin/python3 scripts/plot_trapdoor.py "$out"; fi
   exit
 fi
 run -options_file options/landfill.opts -output_dir output/landfill

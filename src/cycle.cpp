@@ -79,6 +79,7 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
                          ? sim.set.damping_alpha
                          : 0.0;
   for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.face[f];
+  gp.prescribed = &sim.prescribed;
   PetscCall(GridGetGlobal(g, G));
   grid_update(G, gp, rep.grid);
   PetscCall(PetscLogEventEnd(ev_grid, 0, 0, 0, 0));
@@ -147,7 +148,7 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     PetscCall(GridRestoreLocal(g, G));
     PetscCall(GridLocalToGlobalAdd(g));
     PetscCall(GridGetGlobal(g, G));
-    grid_velocity(G, sim.face);
+    grid_velocity(G, sim.face, &sim.prescribed);
     PetscCall(GridRestoreGlobal(g, G));
     PetscCall(GridGlobalToLocal(g));
     PetscCall(GridGetLocal(g, false, G));
@@ -301,12 +302,14 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &re
   for (int d = 0; d < DIM; ++d) sim.run.local_unbalanced_at[d] = rep.grid.max_at[d];
   double mx[4] = {rep.grid.max_unbalanced, rep.g2p.max_c, rep.g2p.max_v,
                   static_cast<double>(rep.g2p.bad > 0 ? sim.rank + 1 : 0)};
-  double sm[8] = {rep.grid.sum_ext,        rep.grid.n_ext,
-                  rep.g2p.kinetic,         static_cast<double>(rep.g2p.left_rank),
-                  rep.iface.contact_nodes, rep.iface.slip_nodes,
-                  rep.iface.compression,   rep.iface.tension};
+  double sm[10] = {rep.grid.sum_ext,          rep.grid.n_ext,
+                   rep.g2p.kinetic,           static_cast<double>(rep.g2p.left_rank),
+                   rep.iface.contact_nodes,   rep.iface.slip_nodes,
+                   rep.iface.compression,     rep.iface.tension,
+                   rep.grid.support_force[0], rep.grid.support_force[1]};
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 4, MPI_DOUBLE, MPI_MAX, sim.comm));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, 8, MPI_DOUBLE, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, 10, MPI_DOUBLE, MPI_SUM, sim.comm));
+  for (int d = 0; d < DIM; ++d) rep.grid.support_force[d] = sim.support_force[d] = sm[8 + d];
   rep.iface.contact_nodes = sm[4];
   rep.iface.slip_nodes = sm[5];
   rep.iface.compression = sm[6];
@@ -364,6 +367,7 @@ PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio) {
   PetscFunctionBeginUser;
   for (int d = 0; d < DIM; ++d) load.gdir[d] = sim.set.gdir[d];
   for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.face[f];
+  gp.prescribed = &sim.prescribed;
   PetscCall(ParticlesGetView(sim.parts, P));
   PetscCall(GridGetLocal(g, true, G));
   if (shape == ShapeKind::Linear)

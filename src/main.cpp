@@ -2,7 +2,7 @@ static const char help[] =
     "pmpm: large-deformation quasi-static geomechanics with the partition Material Point Method.\n"
     "Usage: mpirun -n N pmpm -options_file options/<scene>.opts [-option value ...]\n"
     "Scenes: bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover, "
-    "footing.\n"
+    "footing, trapdoor.\n"
     "-help lists every option.\n\n";
 
 #include "pmpm/checkpoint.hpp"

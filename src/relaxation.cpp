@@ -194,7 +194,8 @@ PetscErrorCode Relax(Simulation &sim) {
         pw += TractionPower(P, sim.loads, sim.traction_idx);
         PetscCall(ParticlesRestoreView(sim.parts, P));
       }
-      run.budget_w_local += run.dt * load.factor * pw + rep.eigen_power;
+      // and of moving supports (transfers.hpp, PrescribedVelocity; this rank's nodes)
+      run.budget_w_local += run.dt * (load.factor * pw + rep.grid.support_power) + rep.eigen_power;
     }
     run.time += run.dt;
     PetscCall(sim.scene->monitor(sim));

@@ -22,12 +22,13 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
   PetscCall(PetscOptionsString("-scene",
                                "Scene: bar, column, landfill, incline, layers, block, catenary, "
-                               "pullout, trench, cover, footing",
+                               "pullout, trench, cover, footing, trapdoor",
                                nullptr, scene, scene, sizeof(scene), &set));
   PetscCheck(
       set, comm, PETSC_ERR_USER_INPUT,
       "No scene given: pass -options_file options/<scene>.opts or -scene NAME "
-      "(bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover, footing)");
+      "(bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover, footing, "
+      "trapdoor)");
   s.scene = scene;
   PetscCall(PetscOptionsReal("-cell_size", "Cell size h (m), > 0", nullptr, s.h, &s.h, nullptr));
   PetscCall(PetscOptionsInt("-ppc", "Particles per cell per direction, 1..8", nullptr, s.ppc,
@@ -391,7 +392,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   sim.scene = make_scene(sim.set.scene);
   PetscCheck(sim.scene, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-scene %s is unknown; allowed: bar, column, landfill, incline, layers, block, "
-             "catenary, pullout, trench, cover, footing",
+             "catenary, pullout, trench, cover, footing, trapdoor",
              sim.set.scene.c_str());
   PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
   PetscCall(PetscOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,

@@ -182,9 +182,48 @@ void p2g_cell_colour(const ParticleView &P, const GridView &G) {
   }
 }
 
+PetscInt PrescribedKey(PetscInt i, PetscInt j, int d, const PetscInt ncell[DIM]) {
+  return (j * (ncell[0] + 1) + i) * DIM + d;
+}
+
+void PrescribedVelocitySort(PrescribedVelocity &pv) {
+  std::vector<size_t> o(pv.key.size());
+  for (size_t k = 0; k < o.size(); ++k) o[k] = k;
+  std::sort(o.begin(), o.end(), [&pv](size_t a, size_t b) { return pv.key[a] < pv.key[b]; });
+  PrescribedVelocity s;
+  for (const size_t k : o) {
+    if (!s.key.empty() && s.key.back() == pv.key[k]) continue; // the first entry of a dof wins
+    s.key.push_back(pv.key[k]);
+    s.v.push_back(pv.v[k]);
+    s.weight.push_back(pv.weight[k]);
+  }
+  pv = std::move(s);
+}
+
+namespace {
+// Which of node (i, j)'s dofs are prescribed (entry index, or -1). The nodes of the box are
+// visited in key order (rows, then columns), so one cursor walks the sorted keys once per sweep.
+struct PrescribedCursor {
+  const PrescribedVelocity *pv;
+  size_t c = 0;
+  void at(PetscInt i, PetscInt j, const PetscInt ncell[DIM], long idx[DIM]) {
+    idx[0] = idx[1] = -1;
+    // nodes outside the box (a view's ghost layers) have no keys, and would break the order
+    if (!pv || i < 0 || j < 0 || i > ncell[0] || j > ncell[1]) return;
+    const PetscInt k0 = PrescribedKey(i, j, 0, ncell);
+    while (c < pv->key.size() && pv->key[c] < k0) ++c;
+    for (int d = 0; d < DIM; ++d)
+      if (c < pv->key.size() && pv->key[c] == k0 + d) idx[d] = static_cast<long>(c++);
+  }
+};
+} // namespace
+
 void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) {
   const double dt = prm.dt, alpha = prm.damping_alpha;
   constexpr int ND = GridDof::NDOF;
+  const PrescribedVelocity *pv =
+      prm.prescribed && !prm.prescribed->empty() ? prm.prescribed : nullptr;
+  PrescribedCursor cur{pv};
   for (PetscInt j = G.gs[1]; j < G.gs[1] + G.gm[1]; ++j) {
     for (PetscInt i = G.gs[0]; i < G.gs[0] + G.gm[0]; ++i) {
       double *node0 = G.node(i, j);
@@ -203,6 +242,14 @@ void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) 
       if (msum <= 0.0) continue; // empty node: nothing to update (its slots stay zero)
       bool held[DIM];
       held_dofs(i, j, G.ncell, prm.face, held);
+      long pi[DIM];
+      cur.at(i, j, G.ncell, pi);
+      for (int d = 0; d < DIM; ++d)
+        if (pi[d] >= 0) {
+          held[d] = true; // a support: out of the unbalanced force
+          st.support_force[d] += pv->weight[pi[d]] * ftot[d];
+          st.support_power -= ftot[d] * pv->v[pi[d]];
+        }
       double fext2 = 0.0;
       for (int d = 0; d < DIM; ++d) fext2 += fext[d] * fext[d];
       if (fext2 > 0.0) {
@@ -225,6 +272,13 @@ void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) 
         for (int d = 0; d < DIM; ++d) {
           double v = node[GridDof::P + d] / m;
           double f = node[GridDof::F + d];
+          if (pi[d] >= 0) {
+            const double vp = pv->v[pi[d]];
+            node[GridDof::P + d] = vp;
+            node[GridDof::F + d] = dt > 0.0 ? (vp - v) / dt : 0.0;
+            st.kinetic += 0.5 * m * vp * vp;
+            continue;
+          }
           if (held[d]) {
             node[GridDof::P + d] = 0.0;
             node[GridDof::F + d] = 0.0;
@@ -414,7 +468,9 @@ template <class Shape> void p2g_momentum(const ParticleView &P, const GridView &
   }
 }
 
-void grid_velocity(const GridView &G, const FaceBC face[2 * DIM]) {
+void grid_velocity(const GridView &G, const FaceBC face[2 * DIM],
+                   const PrescribedVelocity *prescribed) {
+  PrescribedCursor cur{prescribed && !prescribed->empty() ? prescribed : nullptr};
   for (PetscInt j = G.gs[1]; j < G.gs[1] + G.gm[1]; ++j)
     for (PetscInt i = G.gs[0]; i < G.gs[0] + G.gm[0]; ++i) {
       double *node = G.node(i, j);
@@ -422,7 +478,11 @@ void grid_velocity(const GridView &G, const FaceBC face[2 * DIM]) {
       if (m <= 0.0) continue;
       bool held[DIM];
       held_dofs(i, j, G.ncell, face, held);
-      for (int d = 0; d < DIM; ++d) node[GridDof::P + d] = held[d] ? 0.0 : node[GridDof::P + d] / m;
+      long pi[DIM];
+      cur.at(i, j, G.ncell, pi);
+      for (int d = 0; d < DIM; ++d)
+        node[GridDof::P + d] =
+            pi[d] >= 0 ? cur.pv->v[pi[d]] : (held[d] ? 0.0 : node[GridDof::P + d] / m);
     }
 }
 

@@ -157,6 +157,10 @@ struct Simulation {
   std::vector<double> dudx;              // L dt per particle (scratch)
   std::vector<int> fbar_group;           // -fbar: each particle's cell and body (scratch)
   std::vector<double> fbar_sums;         // -fbar: volumes per group (scratch)
+  // Supports inside the box (transfers.hpp): nodal dofs at an imposed velocity, set by a scene,
+  // and the weighted force the body put on them at the last step (global).
+  PrescribedVelocity prescribed;
+  double support_force[DIM] = {0, 0};
   // Stages (stages.cpp): the current one (0: the initial state under the loads), and what the
   // scene's begin_stage set for it: a shrinkage of the degrading zone applied over stage_ramp
   // steps (degradation.hpp).

@@ -46,10 +46,25 @@ void p2g_cell_colour(const ParticleView &P, const GridView &G);
 void p2g_traction(const ParticleView &P, const std::vector<ParticleLoad> &loads,
                   const std::vector<PetscInt> &idx, double factor, const GridView &G);
 
+// Nodal dofs whose velocity is imposed (a moving or fixed support inside the box, such as a
+// lowering trapdoor): entry k holds dof key[k] = (j * (ncell[0] + 1) + i) * DIM + d of node
+// (i, j) at velocity v[k]. The grid update reports sum_k weight[k] f_k, with f the node's total
+// force (internal + external) before the update: the force the body puts on the support, weighted
+// (a weight v[k] / V for a support moving at V gives the force conjugate to V). Keys sorted
+// ascending and unique (PrescribedVelocitySort).
+struct PrescribedVelocity {
+  std::vector<PetscInt> key;
+  std::vector<double> v, weight;
+  bool empty() const { return key.empty(); }
+};
+PetscInt PrescribedKey(PetscInt i, PetscInt j, int d, const PetscInt ncell[DIM]);
+void PrescribedVelocitySort(PrescribedVelocity &pv);
+
 struct GridUpdateParams {
   double dt = 0;
   double damping_alpha = 0; // Cundall local non-viscous damping coefficient (0 = none)
   FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
+  const PrescribedVelocity *prescribed = nullptr; // may be null (none)
 };
 
 struct GridStats {
@@ -58,10 +73,14 @@ struct GridStats {
   double sum_ext = 0;          // sum of |f_ext| over nodes with a load
   double n_ext = 0;            // number of those nodes
   double kinetic = 0;          // nodal kinetic energy 1/2 m v^2 after the update
+  double support_force[DIM] = {0, 0}; // sum of weight f over the prescribed dofs (this rank)
+  double support_power = 0; // power of the supports on the body, -sum f v_prescribed (this rank)
 };
 
 // On the owned nodes of the global vector: v = p/m, a = (f - alpha |f| sign(v)) / m, v += dt a,
-// boundary conditions on both. Nodes without mass are skipped.
+// boundary conditions on both. Nodes without mass are skipped. A prescribed dof takes its
+// velocity, a = (v_prescribed - p/m) / dt (0 when dt = 0), and counts as held in the unbalanced
+// force.
 void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &stats);
 
 struct G2PParams {
@@ -105,7 +124,8 @@ void g2p_velocity(const ParticleView &P, const GridView &G, const GridView *G1,
 // MUSL: mass and momentum of the updated particle velocities back to the grid, and the nodal
 // velocity p/m with the boundary conditions (bounded even at nodes with tiny mass).
 template <class Shape> void p2g_momentum(const ParticleView &P, const GridView &G);
-void grid_velocity(const GridView &G, const FaceBC face[2 * DIM]);
+void grid_velocity(const GridView &G, const FaceBC face[2 * DIM],
+                   const PrescribedVelocity *prescribed = nullptr);
 
 // Particle kinematics from the nodal velocity: position (eq. 5), L dt into dudx (eq. 20),
 // F <- (I + L dt) F, volume J V0; wave speeds and escape/instability checks into stats.

@@ -14,6 +14,7 @@ std::unique_ptr<Scene> make_pullout_scene();
 std::unique_ptr<Scene> make_trench_scene();
 std::unique_ptr<Scene> make_cover_scene();
 std::unique_ptr<Scene> make_footing_scene();
+std::unique_ptr<Scene> make_trapdoor_scene();
 
 std::unique_ptr<Scene> make_scene(const std::string &name) {
   if (name == "bar") return make_bar_scene();
@@ -27,6 +28,7 @@ std::unique_ptr<Scene> make_scene(const std::string &name) {
   if (name == "trench") return make_trench_scene();
   if (name == "cover") return make_cover_scene();
   if (name == "footing") return make_footing_scene();
+  if (name == "trapdoor") return make_trapdoor_scene();
   return nullptr;
 }
 

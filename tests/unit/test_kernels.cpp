@@ -1,5 +1,6 @@
 // Unit tests of the transfer kernels (transfers.hpp) on plain arrays, no PETSc objects:
 //   grid_update: Cundall damping law, boundary faces (held dofs), unbalanced-force and load stats;
+//                prescribed nodal velocities (supports inside the box) and the force they hold;
 //   g2p_kinematics: stable-step wave speed, exact reproduction of a linear velocity field,
 //                   escape / instability flags and the left-rank count;
 //   g2p_velocity: FLIP / PIC blend; the interface body's field G1 for particles of colour 1;
@@ -273,6 +274,59 @@ void test_load_stats() {
   // max |f| (free dofs) over nodes with mass: |(1, 1)| at (2, 5) < 2 at (4, 4); the fixed
   // node's 50 does not count
   CHECK_CLOSE(st.max_unbalanced, 2.0, 0.0);
+}
+
+// Prescribed dofs (PrescribedVelocity): the velocity is imposed, a = (v_prescribed - p/m) / dt,
+// the dof leaves the unbalanced force, and the stats carry sum weight f and -sum f v_prescribed.
+// Keys are given unsorted and with a duplicate (the first entry wins); a massless node is skipped.
+void test_prescribed() {
+  const PetscInt n = 6;
+  TestGrid T(n, 0.25, 0.0, 0.0);
+  set_node(T.G.node(2, 1), {2.0, {1.0, -3.0}, {4.0, -6.0}, {0.0, -1.0}}); // both dofs
+  set_node(T.G.node(3, 1), {1.0, {0.2, 0.0}, {0.5, 100.0}, {0.0, 0.0}});  // y only
+  set_node(T.G.node(4, 4), {0.5, {0.0, 0.0}, {1.0, 0.0}, {0.0, 0.0}});    // free
+  set_node(T.G.node(3, 3), {0.0, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}});    // massless
+  PrescribedVelocity pv;
+  auto add = [&](PetscInt i, PetscInt j, int d, double v, double w) {
+    pv.key.push_back(PrescribedKey(i, j, d, T.G.ncell));
+    pv.v.push_back(v);
+    pv.weight.push_back(w);
+  };
+  add(3, 3, 0, 9.0, 1.0);
+  add(3, 1, 1, 0.0, 0.0);
+  add(2, 1, 1, -0.25, 0.5);
+  add(2, 1, 0, 0.5, 1.0);
+  add(2, 1, 0, 7.0, 1.0); // duplicate: dropped
+  PrescribedVelocitySort(pv);
+  CHECK(pv.key.size() == 4 && std::is_sorted(pv.key.begin(), pv.key.end()));
+  const double dt = 0.1;
+  GridUpdateParams prm;
+  prm.dt = dt;
+  prm.prescribed = &pv;
+  GridStats st;
+  grid_update(T.G, prm, st);
+  const double *a = T.G.node(2, 1), *b = T.G.node(3, 1);
+  CHECK_CLOSE(a[GridDof::P + 0], 0.5, 0.0);
+  CHECK_CLOSE(a[GridDof::P + 1], -0.25, 0.0);
+  CHECK_CLOSE(a[GridDof::F + 0], (0.5 - 0.5) / dt, 1e-14);
+  CHECK_CLOSE(a[GridDof::F + 1], (-0.25 + 1.5) / dt, 1e-13);
+  CHECK_CLOSE(b[GridDof::P + 1], 0.0, 0.0);
+  CHECK_CLOSE(b[GridDof::F + 1], 0.0, 0.0);
+  CHECK_CLOSE(b[GridDof::P + 0], 0.2 + dt * 0.5, 1e-14); // the free dof: v + dt f / m
+  CHECK_CLOSE(st.support_force[0], 1.0 * 4.0, 1e-14);
+  CHECK_CLOSE(st.support_force[1], 0.5 * -6.0 + 0.0 * 100.0, 1e-14);
+  CHECK_CLOSE(st.support_power, -(4.0 * 0.5 + -6.0 * -0.25 + 100.0 * 0.0), 1e-14);
+  // free dofs only: (3, 1)'s x force 0.5 < (4, 4)'s 1; the prescribed 100 and |(4, -6)| do not
+  // count
+  CHECK_CLOSE(st.max_unbalanced, 1.0, 0.0);
+  const double *e = T.G.node(3, 3);
+  CHECK(e[GridDof::P] == 0.0 && e[GridDof::F] == 0.0);
+  // MUSL's velocity pass imposes the same velocities
+  set_node(T.G.node(2, 1), {2.0, {1.0, -3.0}, {0.0, 0.0}, {0.0, 0.0}});
+  const FaceBC free_faces[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
+  grid_velocity(T.G, free_faces, &pv);
+  CHECK_CLOSE(T.G.node(2, 1)[GridDof::P + 0], 0.5, 0.0);
+  CHECK_CLOSE(T.G.node(2, 1)[GridDof::P + 1], -0.25, 0.0);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -715,6 +769,7 @@ int main() {
   test_damping_law();
   test_faces();
   test_load_stats();
+  test_prescribed();
   test_wave_speed();
   test_linear_field<LinearShape>(r);
   test_linear_field<UGIMPShape>(r);
