@@ -9,6 +9,7 @@ static const char help[] =
 #include "pmpm/cycle.hpp"
 #include "pmpm/output.hpp"
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 using namespace pmpm;
@@ -22,8 +23,13 @@ static PetscErrorCode CheckUnusedOptions(MPI_Comm comm, const std::string &scene
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
   std::string list;
-  for (PetscInt k = 0; k < n; ++k) list += std::string(k ? ", -" : "-") + names[k];
-  const PetscInt unused = n;
+  PetscInt unused = 0;
+  for (PetscInt k = 0; k < n; ++k) {
+    // MUMPS reads its -mat_mumps_* options at the first factorisation (-solver newton), after
+    // this check
+    if (!std::strncmp(names[k], "mat_mumps_", 10)) continue;
+    list += std::string(unused++ ? ", -" : "-") + names[k];
+  }
   PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
   PetscCheck(unused == 0, comm, PETSC_ERR_USER_INPUT,
              "option%s %s not used by scene %s (misspelled, or meant for another scene or "
