@@ -34,6 +34,8 @@ struct NewtonSolver {
   Vec Uloc = nullptr, Rloc = nullptr, maskL = nullptr;
   PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0}, s[DIM] = {0, 0}, m[DIM] = {0, 0};
   PetscInt load_steps = 10, max_cuts = 6, max_equilibrium = 10;
+  double cell_fraction = 0;      // -newton_cell_fraction: largest |du| / h of a load step (0: off)
+  double frac = 0;               // the last solve's max |du| / h over the free dofs
   bool atol_given = false;       // -snes_atol given: keep it; else set per step from the load
   double lambda = 0;             // load factor of the current solve
   double kref = 1;               // diagonal of held and unsupported dofs (Pa: the stiffness scale)
@@ -345,12 +347,33 @@ template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
   PetscFunctionReturn(0);
 }
 
+// The largest displacement increment of a free dof, in cells.
+PetscErrorCode IncrementInCells(NewtonSolver &ns, double *frac) {
+  const double *u, *mk;
+  PetscInt n;
+  double mx = 0;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(ns.U, &n));
+  PetscCall(VecGetArrayRead(ns.U, &u));
+  PetscCall(VecGetArrayRead(ns.maskG, &mk));
+  for (PetscInt q = 0; q < n; ++q) mx = std::fmax(mx, mk[q] * std::fabs(u[q]));
+  PetscCall(VecRestoreArrayRead(ns.maskG, &mk));
+  PetscCall(VecRestoreArrayRead(ns.U, &u));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mx, 1, MPI_DOUBLE, MPI_MAX, ns.sim->comm));
+  *frac = mx / ns.sim->grid.h;
+  PetscFunctionReturn(0);
+}
+
 // One load step to load factor lambda from the committed state: SNES solve, then commit.
-// Returns the SNES reason (the state is committed only when it is positive).
-PetscErrorCode LoadStep(NewtonSolver &ns, double lambda, SNESConvergedReason *reason) {
+// Returns the SNES reason (the state is committed only when it is positive) and, under
+// -newton_cell_fraction with `limit`, whether the converged step was rejected for moving the body
+// more than that fraction of a cell (not committed either).
+PetscErrorCode LoadStep(NewtonSolver &ns, double lambda, bool limit, SNESConvergedReason *reason,
+                        bool *rejected) {
   Simulation &sim = *ns.sim;
   PetscInt its = 0, lits = 0;
   PetscFunctionBeginUser;
+  *rejected = false;
   PetscCall(Loads(ns));
   ns.lambda = lambda;
   if (!ns.atol_given) {
@@ -369,6 +392,11 @@ PetscErrorCode LoadStep(NewtonSolver &ns, double lambda, SNESConvergedReason *re
   sim.run.newton_its += its;
   sim.run.linear_its += lits;
   if (*reason <= 0) PetscFunctionReturn(0);
+  PetscCall(IncrementInCells(ns, &ns.frac));
+  if (limit && ns.cell_fraction > 0 && ns.frac > ns.cell_fraction) {
+    *rejected = true;
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscLogEventBegin(ev_commit, 0, 0, 0, 0));
   if (sim.set.shape == ShapeKind::Linear)
     PetscCall(Commit<LinearShape>(ns));
@@ -384,8 +412,8 @@ PetscErrorCode LoadStep(NewtonSolver &ns, double lambda, SNESConvergedReason *re
     PetscCall(SNESGetFunctionNorm(ns.snes, &rn));
     PetscCall(PetscPrintf(sim.comm,
                           "  load step %4" PetscInt_FMT "  load %.4f  Newton its %2" PetscInt_FMT
-                          "  linear its %3" PetscInt_FMT "  |R| %.3e  (%s)\n",
-                          sim.run.load_steps, lambda, its, lits, rn,
+                          "  linear its %3" PetscInt_FMT "  |R| %.3e  max|du|/h %.2e  (%s)\n",
+                          sim.run.load_steps, lambda, its, lits, rn, ns.frac,
                           SNESConvergedReasons[*reason]));
   }
   PetscCall(sim.scene->monitor(sim));
@@ -435,8 +463,9 @@ PetscErrorCode NewtonSetup(Simulation &sim) {
   ns->sim = &sim;
   PetscOptionsBegin(sim.comm, "newton_", "Implicit solver (-solver newton)", nullptr);
   PetscCall(PetscOptionsInt("-load_steps",
-                            "Load steps from zero to the full load, 1..100000 (each is halved "
-                            "up to -newton_max_cuts times when its solve fails)",
+                            "Load steps from zero to the full load, 1..100000 (the fewest "
+                            "under -newton_cell_fraction; a step whose solve fails is halved up "
+                            "to -newton_max_cuts times)",
                             nullptr, ns->load_steps, &ns->load_steps, nullptr));
   PetscCall(PetscOptionsInt("-max_cuts", "Halvings of a failed load step, 0..30", nullptr,
                             ns->max_cuts, &ns->max_cuts, nullptr));
@@ -444,7 +473,14 @@ PetscErrorCode NewtonSetup(Simulation &sim) {
                             "Most equilibrium steps at full load on the reset grid to reach -tol, "
                             "0..1000",
                             nullptr, ns->max_equilibrium, &ns->max_equilibrium, nullptr));
+  PetscCall(PetscOptionsReal("-cell_fraction",
+                             "Adaptive load steps: the largest displacement increment of a step "
+                             "in cells, 0 <= f <= 1 (0: off, the -newton_load_steps equal steps; "
+                             "the load-step error of the particle path is first order in it)",
+                             nullptr, ns->cell_fraction, &ns->cell_fraction, nullptr));
   PetscOptionsEnd();
+  PetscCheck(ns->cell_fraction >= 0 && ns->cell_fraction <= 1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-newton_cell_fraction must be in [0, 1] (got %g; 0: off)", ns->cell_fraction);
   PetscCheck(ns->load_steps >= 1 && ns->load_steps <= 100000, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-newton_load_steps must be in 1..100000 (got %" PetscInt_FMT ")", ns->load_steps);
   PetscCheck(ns->max_cuts >= 0 && ns->max_cuts <= 30, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
@@ -542,14 +578,32 @@ PetscErrorCode Newton(Simulation &sim) {
                           "%s, -solver newton: %" PetscInt_FMT " load steps, tolerance %g\n",
                           s.scene.c_str(), sim.ncell[0], sim.ncell[1], s.h,
                           ShapeKindNames[(int)s.shape], ns.load_steps, s.tol));
-  // load steps, each halved while its solve fails
-  const double nominal = 1.0 / double(ns.load_steps);
+  // load steps, each halved while its solve fails. Under -newton_cell_fraction f the first step
+  // sizes them all: from the unloaded state its increment is the load's alone, |du| / h per unit
+  // load (later steps also carry the grid reset's correction, which does not shrink with them),
+  // so the step count is ceil(that / f), the first step redone when it moved more than f cells.
+  double nominal = 1.0 / double(ns.load_steps);
   double lambda = 0, dl = nominal;
   PetscInt cuts = 0;
+  bool sized = ns.cell_fraction <= 0;
   while (lambda < 1.0 - 1e-12) {
     const double target = std::fmin(1.0, lambda + dl);
     SNESConvergedReason reason;
-    PetscCall(LoadStep(ns, target, &reason));
+    bool rejected;
+    PetscCall(LoadStep(ns, target, !sized, &reason, &rejected));
+    if (!sized && reason > 0) {
+      sized = true;
+      const double steps = std::ceil(ns.frac / (ns.cell_fraction * target) * (1 - 1e-12));
+      nominal = std::fmin(nominal, 1.0 / std::fmax(steps, 1.0));
+      if (!s.quiet)
+        PetscCall(PetscPrintf(sim.comm,
+                              "  -newton_cell_fraction %g: %.0f load steps (the first moved "
+                              "%.3g cells per unit load)%s\n",
+                              ns.cell_fraction, 1.0 / nominal, ns.frac / target,
+                              rejected ? "; first step redone" : ""));
+      dl = nominal;
+      if (rejected) continue;
+    }
     if (reason <= 0) {
       PetscCheck(++cuts <= ns.max_cuts, sim.comm, PETSC_ERR_NOT_CONVERGED,
                  "-solver newton: the load step to load factor %g did not converge (SNES: %s) "
@@ -569,7 +623,8 @@ PetscErrorCode Newton(Simulation &sim) {
   PetscCall(StaticResidual(sim, s.shape, &run.ratio));
   for (PetscInt k = 0; k < ns.max_equilibrium && !(run.ratio <= s.tol); ++k) {
     SNESConvergedReason reason;
-    PetscCall(LoadStep(ns, 1.0, &reason));
+    bool rejected;
+    PetscCall(LoadStep(ns, 1.0, false, &reason, &rejected));
     PetscCheck(reason > 0, sim.comm, PETSC_ERR_NOT_CONVERGED,
                "-solver newton: an equilibrium step at full load did not converge (SNES: %s)",
                SNESConvergedReasons[reason]);
