@@ -514,7 +514,7 @@ PetscErrorCode NewtonSetup(Simulation &sim) {
   PetscCall(DMDAGetCorners(ns->da, &ns->s[0], &ns->s[1], nullptr, &ns->m[0], &ns->m[1], nullptr));
   PetscCall(DMDAGetGhostCorners(ns->da, &ns->gs[0], &ns->gs[1], nullptr, &ns->gm[0], &ns->gm[1],
                                 nullptr));
-  PetscCall(DMCreateMatrix(ns->da, &ns->J));
+  if (!help) PetscCall(DMCreateMatrix(ns->da, &ns->J)); // -help: the options only, no matrix
   PetscCall(DMCreateGlobalVector(ns->da, &ns->U));
   PetscCall(VecDuplicate(ns->U, &ns->R));
   PetscCall(VecDuplicate(ns->U, &ns->fext));
