@@ -86,6 +86,35 @@ c.check("bar converged", s["converged"] is True)
 c.le("bar stress error max|sxx - t|/t", r["stress_error_rel"], 1e-4)
 c.le("bar tip displacement error", r["tip_displacement_error_rel"], 1e-3)
 
+# two bonded layers, stiffness contrast 1e5 (relaxation: 31,000 steps), both shapes (the linear
+# shape's width-1 stencil too): test_layers.py's bounds against the exact layered solution
+# (measured pmpm 3.2e-2 / 2.4e-2 / 6.7 / 2.7e-2, mpm 1.3e-3 / 7.4e-4 / 1.4e-2 / 1.2e-3) in at
+# most 20 load steps (13 and 12: the contrast costs Newton nothing)
+LAYER_BOUNDS = {"pmpm": (0.1, 0.1, 20.0, 0.1), "mpm": (5e-3, 5e-3, 0.02, 5e-3)}
+for shape, bounds in LAYER_BOUNDS.items():
+    d = f"{out}/layers_{shape}"
+    run(exe, np_, ["-options_file", "options/layers.opts", "-shape", shape, "-mat_top_E", "1e12",
+                   "-mat_bottom_gamma", "2e4", "-mat_top_gamma", "2e4"] + NEWTON, d)
+    s = summary(d)
+    r = s["results"]
+    c.check(f"layers 1e5 ({shape}) converged", s["converged"] is True)
+    c.le(f"layers 1e5 ({shape}) load steps", s["newton"]["load_steps"], 20)
+    for key, b in zip(("top_settlement_error_rel", "interface_settlement_error_rel",
+                       "stress_l2_error_rel", "displacement_l2_error_rel"), bounds):
+        c.le(f"layers 1e5 ({shape}) {key}", r[key], b)
+
+# the bonded landfill at test_landfill.py's mesh (h = 1 mm) and bounds against the converged
+# values (measured 0.44 % settlement, 8.4 % peak strain; relaxation 1.0 %, 8 %)
+run(exe, np_, ["-options_file", "options/landfill.opts", "-cell_size", "0.001"] + NEWTON,
+    out + "/landfill")
+s = summary(out + "/landfill")
+r = s["results"]
+c.check("landfill converged", s["converged"] is True)
+c.le("landfill settlement at X = 15 mm vs converged 2.958 mm",
+     abs(r["settlement_centre"] / 2.958e-3 - 1), 0.03)
+c.le("landfill peak membrane strain vs converged 1.76 %", abs(r["peak_axial_strain"] / 0.0176 - 1),
+     0.15)
+
 # the assembled Jacobian (Dirichlet rows, ghost sums, neo-Hookean after a load step) against
 # PETSc's finite differences, on a coarse column
 _, log = run(exe, np_, ["-options_file", "options/column_large.opts", "-cell_size", "0.125",
