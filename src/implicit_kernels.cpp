@@ -119,12 +119,26 @@ void particle_stiffness(const Weights<Shape> &W, double V, const double *A, doub
         }
 }
 
+template <class Shape>
+void add_particle_blocks(const Weights<Shape> &W, const double *K, const NodeBlocks &B) {
+  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS, ND = NN * DIM;
+  for (int k = 0; k < NN; ++k) {
+    const PetscInt i = W.base[0] + k % NS, j = W.base[1] + k / NS;
+    for (int m = 0; m < NN; ++m) {
+      double *b = B.block(i, j, m % NS - k % NS, m / NS - k / NS);
+      for (int a = 0; a < DIM; ++a)
+        for (int c = 0; c < DIM; ++c) b[a * DIM + c] += K[(k * DIM + a) * ND + (m * DIM + c)];
+    }
+  }
+}
+
 #define PMPM_INSTANTIATE(S)                                                                        \
   template void implicit_gradient<S>(const ParticleView &, const NodalView &, const NodalView &,   \
                                      double *);                                                    \
   template void implicit_internal_force<S>(const ParticleView &, const double *,                   \
                                            const NodalView &);                                     \
-  template void particle_stiffness<S>(const Weights<S> &, double, const double *, double *);
+  template void particle_stiffness<S>(const Weights<S> &, double, const double *, double *);       \
+  template void add_particle_blocks<S>(const Weights<S> &, const double *, const NodeBlocks &);
 PMPM_INSTANTIATE(LinearShape)
 PMPM_INSTANTIATE(UGIMPShape)
 #undef PMPM_INSTANTIATE

@@ -40,7 +40,8 @@ struct NewtonSolver {
   double lambda = 0;             // load factor of the current solve
   double kref = 1;               // diagonal of held and unsupported dofs (Pa: the stiffness scale)
   std::vector<TangentKind> kind; // per material
-  std::vector<double> G, Fnew, snew, epsp, Pk;
+  PetscInt width = 2;            // the solve's stencil width (the shape's support)
+  std::vector<double> G, Fnew, snew, epsp, Pk, blocks;
 };
 
 namespace {
@@ -141,58 +142,81 @@ PetscErrorCode FormResidual(SNES, Vec U, Vec R, void *ctx) {
   PetscFunctionReturn(0);
 }
 
-// The consistent tangent: each particle's stiffness over its free, supported dofs; kref on the
-// diagonal of the others.
+// The consistent tangent: each particle's stiffness gathered per node (add_particle_blocks),
+// then one insertion per node row over its free, supported dofs; kref on the diagonal of the
+// others.
 template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
-  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS, ND = NN * DIM;
+  constexpr int NN = Weights<Shape>::NN, ND = NN * DIM;
   Simulation &sim = *ns.sim;
   ParticleView P;
   Weights<Shape> W;
-  double A[DIM * DIM * DIM * DIM], K[ND * ND], Kc[ND * ND];
-  MatStencil idx[ND];
-  int keep[ND];
+  double A[DIM * DIM * DIM * DIM], K[ND * ND];
   const double *mk;
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(B));
+  NodeBlocks NB;
+  NB.w = ns.width;
+  const int nb = (2 * NB.w + 1) * (2 * NB.w + 1);
+  for (int d = 0; d < DIM; ++d) {
+    NB.gs[d] = ns.gs[d];
+    NB.gm[d] = ns.gm[d];
+  }
+  ns.blocks.assign(static_cast<size_t>(ns.gm[0] * ns.gm[1]) * nb * DIM * DIM, 0.0);
+  NB.data = ns.blocks.data();
   PetscCall(ParticlesGetView(sim.parts, P));
   PetscCall(TrialState<Shape>(ns, U, P));
-  PetscCall(VecGetArrayRead(ns.maskL, &mk));
-  const NodalView M = LocalView(ns, const_cast<double *>(mk));
   for (PetscInt p = 0; p < P.n; ++p) {
     const PetscInt mat = P.mat[p];
     piola_tangent(ns.kind[mat], sim.mats[mat].el, &ns.G[p * DIM * DIM], P.stress + p * NSTRESS,
                   &ns.snew[p * NSTRESS], P.F + p * DIM * DIM, A);
     weights<Shape>(P.x + p * DIM, P.lp + p * DIM, sim.grid.origin, sim.grid.h, W);
     particle_stiffness<Shape>(W, P.vol[p], A, K);
-    int nk = 0;
-    for (int k = 0; k < NN; ++k) {
-      const PetscInt i = W.base[0] + k % NS, j = W.base[1] + k / NS;
+    add_particle_blocks<Shape>(W, K, NB);
+  }
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  PetscCall(VecGetArrayRead(ns.maskL, &mk));
+  const NodalView M = LocalView(ns, const_cast<double *>(mk));
+  std::vector<MatStencil> rows(DIM), cols(static_cast<size_t>(nb) * DIM);
+  std::vector<double> vals(static_cast<size_t>(DIM) * nb * DIM);
+  std::vector<const double *> src(static_cast<size_t>(nb) * DIM);
+  std::vector<int> ra(DIM), cb(static_cast<size_t>(nb) * DIM);
+  for (PetscInt j = ns.gs[1]; j < ns.gs[1] + ns.gm[1]; ++j)
+    for (PetscInt i = ns.gs[0]; i < ns.gs[0] + ns.gm[0]; ++i) {
+      int nr = 0, nc = 0;
       for (int a = 0; a < DIM; ++a)
         if (M.node(i, j)[a] != 0.0) {
-          keep[nk] = k * DIM + a;
-          idx[nk].i = i;
-          idx[nk].j = j;
-          idx[nk].k = 0;
-          idx[nk].c = a;
-          ++nk;
+          rows[nr] = MatStencil{0, j, i, a};
+          ra[nr++] = a;
         }
+      if (nr == 0) continue;
+      bool any = false;
+      for (int dj = -NB.w; dj <= NB.w; ++dj)
+        for (int di = -NB.w; di <= NB.w; ++di) {
+          const PetscInt ii = i + di, jj = j + dj;
+          if (ii < ns.gs[0] || ii >= ns.gs[0] + ns.gm[0] || jj < ns.gs[1] ||
+              jj >= ns.gs[1] + ns.gm[1])
+            continue;
+          const double *b = NB.block(i, j, di, dj);
+          for (int c = 0; c < DIM; ++c)
+            if (M.node(ii, jj)[c] != 0.0) {
+              cols[nc] = MatStencil{0, jj, ii, c};
+              src[nc] = b;
+              cb[nc++] = c;
+              for (int r = 0; r < nr; ++r) any = any || b[ra[r] * DIM + c] != 0.0;
+            }
+        }
+      if (!any) continue; // no particle of this rank couples this node
+      for (int r = 0; r < nr; ++r)
+        for (int c = 0; c < nc; ++c) vals[r * nc + c] = src[c][ra[r] * DIM + cb[c]];
+      PetscCall(MatSetValuesStencil(B, nr, rows.data(), nc, cols.data(), vals.data(), ADD_VALUES));
     }
-    for (int r = 0; r < nk; ++r)
-      for (int c = 0; c < nk; ++c) Kc[r * nk + c] = K[keep[r] * ND + keep[c]];
-    if (nk > 0) PetscCall(MatSetValuesStencil(B, nk, idx, nk, idx, Kc, ADD_VALUES));
-  }
   PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
-  PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscCall(VecGetArrayRead(ns.maskG, &mk));
   for (PetscInt j = ns.s[1]; j < ns.s[1] + ns.m[1]; ++j)
     for (PetscInt i = ns.s[0]; i < ns.s[0] + ns.m[0]; ++i)
       for (int a = 0; a < DIM; ++a)
         if (mk[((j - ns.s[1]) * ns.m[0] + (i - ns.s[0])) * DIM + a] == 0.0) {
-          MatStencil st;
-          st.i = i;
-          st.j = j;
-          st.k = 0;
-          st.c = a;
+          MatStencil st{0, j, i, a};
           PetscCall(MatSetValuesStencil(B, 1, &st, 1, &st, &ns.kref, ADD_VALUES));
         }
   PetscCall(VecRestoreArrayRead(ns.maskG, &mk));
@@ -508,6 +532,7 @@ PetscErrorCode NewtonSetup(Simulation &sim) {
   PetscCall(DMDAGetOwnershipRanges(sim.grid.da, &lx, &ly, nullptr));
   const PetscInt width =
       sim.set.shape == ShapeKind::Linear ? LinearShape::NS - 1 : UGIMPShape::NS - 1;
+  ns->width = width;
   PetscCall(DMDACreate2d(sim.comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX, M, N,
                          px, py, DIM, width, lx, ly, &ns->da));
   PetscCall(DMSetUp(ns->da));

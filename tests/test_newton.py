@@ -104,16 +104,18 @@ for shape, bounds in LAYER_BOUNDS.items():
         c.le(f"layers 1e5 ({shape}) {key}", r[key], b)
 
 # the bonded landfill at test_landfill.py's mesh (h = 1 mm) and bounds against the converged
-# values (measured 0.44 % settlement, 8.4 % peak strain; relaxation 1.0 %, 8 %)
-run(exe, np_, ["-options_file", "options/landfill.opts", "-cell_size", "0.001"] + NEWTON,
-    out + "/landfill")
-s = summary(out + "/landfill")
-r = s["results"]
-c.check("landfill converged", s["converged"] is True)
-c.le("landfill settlement at X = 15 mm vs converged 2.958 mm",
-     abs(r["settlement_centre"] / 2.958e-3 - 1), 0.03)
-c.le("landfill peak membrane strain vs converged 1.76 %", abs(r["peak_axial_strain"] / 0.0176 - 1),
-     0.15)
+# values (measured 0.44 % settlement, 8.4 % peak strain; relaxation 1.0 %, 8 %). 1 rank only: a
+# parallel MUMPS factorisation on shared cores costs 4x (the layers above cross the rank boundary)
+if np_ == 1:
+    run(exe, np_, ["-options_file", "options/landfill.opts", "-cell_size", "0.001"] + NEWTON,
+        out + "/landfill")
+    s = summary(out + "/landfill")
+    r = s["results"]
+    c.check("landfill converged", s["converged"] is True)
+    c.le("landfill settlement at X = 15 mm vs converged 2.958 mm",
+         abs(r["settlement_centre"] / 2.958e-3 - 1), 0.03)
+    c.le("landfill peak membrane strain vs converged 1.76 %",
+         abs(r["peak_axial_strain"] / 0.0176 - 1), 0.15)
 
 # the assembled Jacobian (Dirichlet rows, ghost sums, neo-Hookean after a load step) against
 # PETSc's finite differences, on a coarse column

@@ -61,4 +61,23 @@ void piola_tangent(TangentKind kind, const ElasticConstants &el, const double *G
 template <class Shape>
 void particle_stiffness(const Weights<Shape> &W, double V, const double *A, double *K);
 
+// The tangent gathered per node before it goes into the matrix (one insertion per node row
+// instead of one per particle): for every ghosted node, the DIM x DIM blocks coupling it to its
+// (2w + 1)^2 neighbours, w the stencil width; block (row node (i, j), column node (i + di, j + dj))
+// at block(i, j, di, dj), entry (a, b) at [a * DIM + b].
+struct NodeBlocks {
+  PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0};
+  int w = 0;
+  double *data = nullptr;
+  double *block(PetscInt i, PetscInt j, int di, int dj) const {
+    const int nb = 2 * w + 1;
+    return data +
+           (((j - gs[1]) * gm[0] + (i - gs[0])) * nb * nb + (dj + w) * nb + (di + w)) * DIM * DIM;
+  }
+};
+
+// Add one particle's stiffness (particle_stiffness' layout) into the node blocks.
+template <class Shape>
+void add_particle_blocks(const Weights<Shape> &W, const double *K, const NodeBlocks &B);
+
 } // namespace pmpm
