@@ -230,6 +230,13 @@ PetscErrorCode OutputSummary(Simulation &sim, const std::string &results) {
               json_kv("tension_ratio", I[0] > 0 ? I[1] / I[0] : 0.0) + "\n  },\n  ";
     }
     iface += ChainSummaryJson(sim);
+    // the equilibrium solver, and Newton's work (load steps, nonlinear and linear iterations)
+    std::string solver = std::string("\"solver\": \"") + SolverNames[(int)s.solver] + "\",\n  ";
+    if (s.solver == Solver::Newton)
+      solver += "\"newton\": {\"load_steps\": " + std::to_string(sim.run.load_steps) +
+                ", \"nonlinear_iterations\": " + std::to_string(sim.run.newton_its) +
+                ", \"linear_iterations\": " + std::to_string(sim.run.linear_its) + "},\n  ";
+    iface = solver + iface;
     std::fprintf(f,
                  "{\n  \"scene\": \"%s\",\n  \"ranks\": %d,\n  \"particles\": %d,\n"
                  "  \"cells\": [%d, %d],\n  %s,\n  \"ppc\": %d,\n  \"shape\": \"%s\",\n"

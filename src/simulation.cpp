@@ -3,6 +3,7 @@
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/materials/elastic.hpp"
 #include "pmpm/materials/von_mises.hpp"
+#include "pmpm/newton.hpp"
 #include "pmpm/prerun.hpp"
 #include <algorithm>
 #include <cmath>
@@ -106,6 +107,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                                "that wrote it; any rank count)",
                                nullptr, restart, restart, sizeof(restart), &set));
   s.restart = set ? std::string(restart) : "";
+  PetscCall(PetscOptionsEnum("-solver",
+                             "Equilibrium solver: relaxation (explicit dynamic relaxation) or "
+                             "newton (implicit load steps on PETSc SNES; -newton_*, -snes_*, "
+                             "-ksp_*, -pc_* options)",
+                             nullptr, SolverNames, (PetscEnum)s.solver, (PetscEnum *)&s.solver,
+                             nullptr));
   PetscOptionsEnd();
 
   PetscCheck(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
@@ -540,6 +547,8 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   sim.particles_setup = n;
   PetscCheck(n > 0 || nchain > 0, sim.comm, PETSC_ERR_USER_INPUT,
              "the scene produced no particles: check the geometry options against -cell_size");
+  // -solver newton: its options, what it cannot solve yet, its SNES (with -help: its options)
+  if (sim.set.solver == Solver::Newton || help) PetscCall(NewtonSetup(sim));
   // Step 0: monitor() also sees the initial state, where scenes may set an initial velocity field.
   PetscCall(sim.scene->monitor(sim));
   PetscFunctionReturn(0);
@@ -547,6 +556,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
 
 PetscErrorCode SimulationDestroy(Simulation &sim) {
   PetscFunctionBeginUser;
+  PetscCall(NewtonDestroy(sim));
   PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
   PetscCall(InterfaceGridDestroy(sim.iface_grid));
   PetscCall(GridDestroy(sim.grid));

@@ -1,9 +1,10 @@
-// The stage loop: one equilibrium solver (dynamic relaxation, relaxation.cpp) called once per
-// stage. Stage 0 is the scene's initial state under its loads (for a cover, the geostatic state);
-// each later stage is a change the scene makes (waste shrinks, a void opens) followed by a new
-// equilibrium, which the scene records.
+// The stage loop: one equilibrium solver (dynamic relaxation, relaxation.cpp, or Newton load
+// steps under -solver newton, newton.cpp) called once per stage. Stage 0 is the scene's initial
+// state under its loads (for a cover, the geostatic state); each later stage is a change the scene
+// makes (waste shrinks, a void opens) followed by a new equilibrium, which the scene records.
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
+#include "pmpm/newton.hpp"
 #include <cmath>
 #include <cstdio>
 
@@ -25,7 +26,10 @@ PetscErrorCode RunStages(Simulation &sim) {
       sim.stage_shrink = 0;
       PetscCall(sim.scene->begin_stage(sim, k));
     }
-    PetscCall(Relax(sim)); // clears sim.resume
+    if (sim.set.solver == Solver::Newton)
+      PetscCall(Newton(sim));
+    else
+      PetscCall(Relax(sim)); // clears sim.resume
     sim.run.all_converged = sim.run.all_converged && sim.run.converged;
     PetscCall(sim.scene->end_stage(sim, k));
     if (sim.scene->finished()) break;

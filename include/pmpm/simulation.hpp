@@ -22,6 +22,10 @@ inline constexpr const char *DampingNames[] = {"none",    "local",    "kinetic",
 enum class InertiaScaling { None = 0, WaveSpeed = 1 };
 inline constexpr const char *InertiaScalingNames[] = {"none", "wave_speed", "InertiaScaling",
                                                       "INERTIA_", nullptr};
+// The equilibrium solver of every stage: explicit dynamic relaxation (relaxation.cpp) or Newton
+// load steps on PETSc SNES (newton.cpp).
+enum class Solver { Relaxation = 0, Newton = 1 };
+inline constexpr const char *SolverNames[] = {"relaxation", "newton", "Solver", "SOLVER_", nullptr};
 
 // Options every scene accepts (the interface contract in README.md).
 struct Settings {
@@ -49,7 +53,8 @@ struct Settings {
   // checkpoint.hpp: write the state every K steps (0: never) and after every stage; resume
   PetscInt checkpoint_every = 0;
   bool checkpoint_stage_end = false;
-  std::string restart; // -restart FILE (empty: a fresh run)
+  std::string restart;                // -restart FILE (empty: a fresh run)
+  Solver solver = Solver::Relaxation; // -solver
 };
 
 struct MaterialEntry {
@@ -61,6 +66,7 @@ struct MaterialEntry {
 };
 
 struct Simulation;
+struct NewtonSolver; // newton.cpp: the SNES, its DMDA and matrix (-solver newton only)
 
 // A scene: named geometry, materials, boundary conditions and results (pTatin-style table).
 class Scene {
@@ -119,6 +125,8 @@ struct RunState {
   double ke_window = -1;
   double budget_e0 = 0, budget_w_local = 0, budget_floor = 0;
   bool all_converged = true; // every stage so far converged
+  // -solver newton (newton.cpp): load steps solved, nonlinear and linear iterations over the run
+  PetscInt load_steps = 0, newton_its = 0, linear_its = 0;
 };
 
 struct Simulation {
@@ -174,6 +182,7 @@ struct Simulation {
   // -restart: the stage loop resumes at `stage`, inside it (after run.stage_step steps) when
   // resume_in_stage, else at its start (the checkpoint was written after the previous stage)
   bool resume = false, resume_in_stage = false;
+  NewtonSolver *newton = nullptr; // -solver newton: created in setup, destroyed with the run
 };
 
 // Setup: options, scene, materials, grid, particles.

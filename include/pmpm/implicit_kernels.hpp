@@ -1,0 +1,83 @@
+// The kernels of the implicit (Newton) solver, plain functions over particle arrays and ghosted
+// nodal arrays of DIM values per node; newton.cpp wraps them in PETSc's SNES.
+//
+// One load step is updated-Lagrangian on a grid that moves with the body during the step (the
+// finite-element view of implicit MPM, Guilkey and Weiss 2003, Charlton et al. 2017): particles
+// keep the weights S_i and gradients grad S_i of their positions x^n at the step's start, and the
+// unknown is the nodal displacement increment du. Per particle
+//   G = sum_i du_i (x) grad S_i           (increment gradient w.r.t. x^n)
+//   f = I + G,  J = det f,  F = f F^n     (the explicit step's F <- (I + L dt) F)
+//   sigma' = the material's update with dudx = G and F (evaluated on copies, committed only
+//            after the step converged)
+//   P = J sigma' f^-T                     (first Piola stress relative to the step's start)
+// and the internal force is f_int,i = sum_p V_p^n P_p grad S_i(x_p^n): exactly the Cauchy
+// force sum_p V_p sigma_p grad_x S_i on the moved grid. At du = 0 it is the explicit P2G's
+// internal force, so equilibrium at the start of a step is relaxation's equilibrium.
+#pragma once
+#include "pmpm/material.hpp"
+#include "pmpm/particles.hpp"
+#include "pmpm/shape.hpp"
+
+namespace pmpm {
+
+// Ghosted nodal array with DIM values per node (a DMDA of DIM dofs), node (i, j) in global
+// indices at data[((j - gs[1]) * gm[0] + (i - gs[0])) * DIM].
+struct NodalView {
+  double h = 0;
+  double origin[DIM] = {0, 0};
+  PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0};
+  double *data = nullptr;
+  double *node(PetscInt i, PetscInt j) const {
+    return data + ((j - gs[1]) * gm[0] + (i - gs[0])) * DIM;
+  }
+};
+
+// The materials that have a consistent tangent (others are refused by -solver newton).
+enum class TangentKind { None = 0, LinearElastic = 1, NeoHookean = 2 };
+
+// G_p = sum_i (mask_i du_i) (x) grad S_i(x_p), row-major (G[a * DIM + j] = d du_a / d x_j);
+// mask is 1 on free dofs and 0 on held or unsupported ones (their du does not deform anything).
+template <class Shape>
+void implicit_gradient(const ParticleView &P, const NodalView &U, const NodalView &mask, double *G);
+
+// Trial kinematics for the material batch: F_new = (I + G) F^n per particle.
+void implicit_deformation(PetscInt n, const double *G, const double *F, double *Fnew);
+
+// P = J sigma' f^-T (in-plane DIM x DIM, row-major) from G and the trial Cauchy stress.
+void implicit_piola(PetscInt n, const double *G, const double *stress, double *Pk);
+
+// R_i += V_p^n P_p grad S_i(x_p) (into the ghosted view; sum the ghosts across ranks after).
+template <class Shape>
+void implicit_internal_force(const ParticleView &P, const double *Pk, const NodalView &R);
+
+// A = dP / dG (DIM^2 x DIM^2, A[(a DIM + j) DIM^2 + (b DIM + l)] = dP_aj / dG_bl) of one particle,
+// exact for the material's update: linear elastic (Jaumann rate, the explicit update with
+// dudx = G) or neo-Hookean. s_old: committed stress; s_new: trial stress at G; Fn: committed F.
+void piola_tangent(TangentKind kind, const ElasticConstants &el, const double *G,
+                   const double *s_old, const double *s_new, const double *Fn, double *A);
+
+// One particle's stiffness over its support: the NN nodes of weights() (node k at base +
+// (k % NS, k / NS)); K[(k DIM + a) (NN DIM) + (m DIM + b)] = V sum_jl dS_k/dx_j A_ajbl dS_m/dx_l.
+template <class Shape>
+void particle_stiffness(const Weights<Shape> &W, double V, const double *A, double *K);
+
+// The tangent gathered per node before it goes into the matrix (one insertion per node row
+// instead of one per particle): for every ghosted node, the DIM x DIM blocks coupling it to its
+// (2w + 1)^2 neighbours, w the stencil width; block (row node (i, j), column node (i + di, j + dj))
+// at block(i, j, di, dj), entry (a, b) at [a * DIM + b].
+struct NodeBlocks {
+  PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0};
+  int w = 0;
+  double *data = nullptr;
+  double *block(PetscInt i, PetscInt j, int di, int dj) const {
+    const int nb = 2 * w + 1;
+    return data +
+           (((j - gs[1]) * gm[0] + (i - gs[0])) * nb * nb + (dj + w) * nb + (di + w)) * DIM * DIM;
+  }
+};
+
+// Add one particle's stiffness (particle_stiffness' layout) into the node blocks.
+template <class Shape>
+void add_particle_blocks(const Weights<Shape> &W, const double *K, const NodeBlocks &B);
+
+} // namespace pmpm

@@ -1,0 +1,146 @@
+#include "pmpm/implicit_kernels.hpp"
+#include <cmath>
+
+namespace pmpm {
+
+namespace {
+inline MatN mat_of(const double *a) {
+  MatN m;
+  m << a[0], a[1], a[2], a[3];
+  return m;
+}
+inline MatN in_plane(const double *s) { // Cauchy stress xx yy zz xy -> in-plane 2x2
+  MatN m;
+  m << s[0], s[3], s[3], s[1];
+  return m;
+}
+} // namespace
+
+template <class Shape>
+void implicit_gradient(const ParticleView &P, const NodalView &U, const NodalView &mask,
+                       double *G) {
+  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
+  Weights<Shape> W;
+  for (PetscInt p = 0; p < P.n; ++p) {
+    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, U.origin, U.h, W);
+    double g[DIM * DIM] = {0, 0, 0, 0};
+    for (int k = 0; k < NN; ++k) {
+      const PetscInt i = W.base[0] + k % NS, j = W.base[1] + k / NS;
+      const double *u = U.node(i, j), *m = mask.node(i, j);
+      for (int a = 0; a < DIM; ++a)
+        for (int d = 0; d < DIM; ++d) g[a * DIM + d] += m[a] * u[a] * W.grad[k][d];
+    }
+    for (int q = 0; q < DIM * DIM; ++q) G[p * DIM * DIM + q] = g[q];
+  }
+}
+
+void implicit_deformation(PetscInt n, const double *G, const double *F, double *Fnew) {
+  for (PetscInt p = 0; p < n; ++p) {
+    const MatN f = MatN::Identity() + mat_of(G + p * DIM * DIM);
+    const MatN Fn = f * mat_of(F + p * DIM * DIM);
+    for (int a = 0; a < DIM; ++a)
+      for (int b = 0; b < DIM; ++b) Fnew[p * DIM * DIM + a * DIM + b] = Fn(a, b);
+  }
+}
+
+void implicit_piola(PetscInt n, const double *G, const double *stress, double *Pk) {
+  for (PetscInt p = 0; p < n; ++p) {
+    const MatN f = MatN::Identity() + mat_of(G + p * DIM * DIM);
+    const MatN Pm = f.determinant() * in_plane(stress + p * NSTRESS) * f.inverse().transpose();
+    for (int a = 0; a < DIM; ++a)
+      for (int b = 0; b < DIM; ++b) Pk[p * DIM * DIM + a * DIM + b] = Pm(a, b);
+  }
+}
+
+template <class Shape>
+void implicit_internal_force(const ParticleView &P, const double *Pk, const NodalView &R) {
+  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
+  Weights<Shape> W;
+  for (PetscInt p = 0; p < P.n; ++p) {
+    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, R.origin, R.h, W);
+    const double V = P.vol[p], *Pm = Pk + p * DIM * DIM;
+    for (int k = 0; k < NN; ++k) {
+      double *r = R.node(W.base[0] + k % NS, W.base[1] + k / NS);
+      for (int a = 0; a < DIM; ++a)
+        for (int d = 0; d < DIM; ++d) r[a] += V * Pm[a * DIM + d] * W.grad[k][d];
+    }
+  }
+}
+
+// Directional derivatives dP[dG] for the DIM^2 unit directions dG = e_b (x) e_l, with
+// f = I + G, J = det f, dJ = J tr(f^-1 dG), d(f^-T) = -f^-T dG^T f^-T:
+//   linear elastic:  P = J s' f^-T, ds' = dW s - s dW + lambda tr(dG) I + 2 mu sym(dG),
+//                    dW = skew(dG) (the Jaumann update is linear in G; s the committed stress)
+//                    dP = J (tr(f^-1 dG) s' + ds' - s' f^-T dG^T) f^-T
+//   neo-Hookean:     P = tau f^-T / J^n, tau = mu (B - I) + lambda ln(J_tot) I, F_tot = f F^n
+//                    dtau = mu (dF F_tot^T + F_tot dF^T) + lambda tr(f^-1 dG) I, dF = dG F^n
+//                    dP = (dtau - tau f^-T dG^T) f^-T / J^n
+void piola_tangent(TangentKind kind, const ElasticConstants &el, const double *G,
+                   const double *s_old, const double *s_new, const double *Fn, double *A) {
+  const MatN I = MatN::Identity();
+  const MatN f = I + mat_of(G), fi = f.inverse(), fiT = fi.transpose();
+  const double J = f.determinant(), lam = el.lambda(), mu = el.G();
+  const MatN sn = in_plane(s_new), so = in_plane(s_old);
+  const MatN Fo = mat_of(Fn), Ft = f * Fo;
+  const double Jn = Fo.determinant();
+  const MatN tau = mu * (Ft * Ft.transpose() - I) + lam * std::log(Ft.determinant()) * I;
+  for (int b = 0; b < DIM; ++b)
+    for (int l = 0; l < DIM; ++l) {
+      MatN dG = MatN::Zero();
+      dG(b, l) = 1.0;
+      const double dtr = (fi * dG).trace();
+      MatN dP;
+      if (kind == TangentKind::NeoHookean) {
+        const MatN dF = dG * Fo;
+        const MatN dtau = mu * (dF * Ft.transpose() + Ft * dF.transpose()) + lam * dtr * I;
+        dP = (dtau - tau * fiT * dG.transpose()) * fiT / Jn;
+      } else {
+        const MatN dW = 0.5 * (dG - dG.transpose()), de = 0.5 * (dG + dG.transpose());
+        const MatN ds = dW * so - so * dW + lam * dG.trace() * I + 2.0 * mu * de;
+        dP = J * (dtr * sn + ds - sn * fiT * dG.transpose()) * fiT;
+      }
+      for (int a = 0; a < DIM; ++a)
+        for (int j = 0; j < DIM; ++j) A[(a * DIM + j) * DIM * DIM + (b * DIM + l)] = dP(a, j);
+    }
+}
+
+template <class Shape>
+void particle_stiffness(const Weights<Shape> &W, double V, const double *A, double *K) {
+  constexpr int NN = Weights<Shape>::NN, ND = NN * DIM;
+  for (int k = 0; k < NN; ++k)
+    for (int a = 0; a < DIM; ++a)
+      for (int m = 0; m < NN; ++m)
+        for (int b = 0; b < DIM; ++b) {
+          double s = 0;
+          for (int j = 0; j < DIM; ++j)
+            for (int l = 0; l < DIM; ++l)
+              s += W.grad[k][j] * A[(a * DIM + j) * DIM * DIM + (b * DIM + l)] * W.grad[m][l];
+          K[(k * DIM + a) * ND + (m * DIM + b)] = V * s;
+        }
+}
+
+template <class Shape>
+void add_particle_blocks(const Weights<Shape> &W, const double *K, const NodeBlocks &B) {
+  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS, ND = NN * DIM;
+  for (int k = 0; k < NN; ++k) {
+    const PetscInt i = W.base[0] + k % NS, j = W.base[1] + k / NS;
+    for (int m = 0; m < NN; ++m) {
+      double *b = B.block(i, j, m % NS - k % NS, m / NS - k / NS);
+      for (int a = 0; a < DIM; ++a)
+        for (int c = 0; c < DIM; ++c) b[a * DIM + c] += K[(k * DIM + a) * ND + (m * DIM + c)];
+    }
+  }
+}
+
+#define PMPM_INSTANTIATE(S)                                                                        \
+  template void implicit_gradient<S>(const ParticleView &, const NodalView &, const NodalView &,   \
+                                     double *);                                                    \
+  template void implicit_internal_force<S>(const ParticleView &, const double *,                   \
+                                           const NodalView &);                                     \
+  template void particle_stiffness<S>(const Weights<S> &, double, const double *, double *);       \
+  template void add_particle_blocks<S>(const Weights<S> &, const double *, const NodeBlocks &);
+PMPM_INSTANTIATE(LinearShape)
+PMPM_INSTANTIATE(UGIMPShape)
+#undef PMPM_INSTANTIATE
+
+} // namespace pmpm

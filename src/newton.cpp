@@ -1,0 +1,671 @@
+// The implicit quasi-static solver (-solver newton): load steps, each a PETSc SNES solve for the
+// nodal displacement increment on a DMDA of its own, the residual and the consistent tangent
+// assembled from the particles by the kernels of implicit_kernels.cpp.
+//
+// Choices:
+//  - Unknowns: du at every grid node. Held dofs (box faces, held_dofs) and nodes without particle
+//    support (mass <= kSmallCut x the largest nodal mass: empty cells and the tiniest "small
+//    cuts") are removed by an identity row and column scaled by the largest P-wave modulus:
+//    R = k du, so du = 0 there and the matrix stays non-singular (and symmetric where the
+//    tangent is). Their du is masked out of the kinematics, so rows and columns agree.
+//  - Loads: the explicit P2G's nodal external force (gravity by the shape's weights, tractions at
+//    the blocks' faces) at the particles' positions at the step's start, times the load factor.
+//  - The grid moves with the body within a step (implicit_kernels.hpp); after a step the particles
+//    carry the increment (x += sum S_i du_i, F, V, stress) and the grid is reset. Relaxation's
+//    equilibrium is on the reset grid, so after the last load step Newton takes equilibrium steps
+//    at full load until relaxation's unbalanced-force ratio (StaticResidual) is <= -tol.
+//  - Default linear solver: a direct LU by MUMPS (any rank count; PETSc's own LU is serial), the
+//    line search bt; every -snes_/-ksp_/-pc_ option overrides them.
+#include "pmpm/newton.hpp"
+#include "pmpm/cycle.hpp"
+#include "pmpm/implicit_kernels.hpp"
+#include <petscsnes.h>
+#include <cmath>
+#include <cstring>
+
+namespace pmpm {
+
+struct NewtonSolver {
+  Simulation *sim = nullptr;
+  DM da = nullptr;
+  SNES snes = nullptr;
+  Mat J = nullptr;
+  Vec U = nullptr, R = nullptr, fext = nullptr, maskG = nullptr;
+  Vec Uloc = nullptr, Rloc = nullptr, maskL = nullptr;
+  PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0}, s[DIM] = {0, 0}, m[DIM] = {0, 0};
+  PetscInt load_steps = 10, max_cuts = 6, max_equilibrium = 10;
+  double cell_fraction = 0;      // -newton_cell_fraction: largest |du| / h of a load step (0: off)
+  double frac = 0;               // the last solve's max |du| / h over the free dofs
+  bool atol_given = false;       // -snes_atol given: keep it; else set per step from the load
+  double lambda = 0;             // load factor of the current solve
+  double kref = 1;               // diagonal of held and unsupported dofs (Pa: the stiffness scale)
+  std::vector<TangentKind> kind; // per material
+  PetscInt width = 2;            // the solve's stencil width (the shape's support)
+  std::vector<double> G, Fnew, snew, epsp, Pk, blocks;
+};
+
+namespace {
+PetscLogEvent ev_residual, ev_jacobian, ev_solve, ev_commit;
+
+// A node with less mass than this share of the largest nodal mass is held (its stiffness would be
+// of the order of this share squared: a small cut that only adds round-off to the solve).
+constexpr double kSmallCut = 1e-9;
+// Without -snes_atol, a load step's solve stops when |R|_2 <= kAtolShare x -tol x |f_ext|_2 (well
+// inside relaxation's criterion, which the equilibrium steps then check on the reset grid).
+constexpr double kAtolShare = 1e-3;
+
+NodalView LocalView(const NewtonSolver &ns, double *data) {
+  NodalView v;
+  v.h = ns.sim->grid.h;
+  for (int d = 0; d < DIM; ++d) {
+    v.origin[d] = ns.sim->grid.origin[d];
+    v.gs[d] = ns.gs[d];
+    v.gm[d] = ns.gm[d];
+  }
+  v.data = data;
+  return v;
+}
+
+// du (ghosted) to the trial state of every particle: G, F_new, trial stress and plastic strain
+// (copies; the committed state is untouched), and P.
+template <class Shape> PetscErrorCode TrialState(NewtonSolver &ns, Vec U, const ParticleView &P) {
+  Simulation &sim = *ns.sim;
+  const double *u, *mk;
+  PetscFunctionBeginUser;
+  const size_t n = static_cast<size_t>(P.n);
+  ns.G.resize(n * DIM * DIM);
+  ns.Fnew.resize(n * DIM * DIM);
+  ns.Pk.resize(n * DIM * DIM);
+  ns.snew.assign(P.stress, P.stress + n * NSTRESS);
+  ns.epsp.assign(P.eps_p, P.eps_p + n);
+  PetscCall(DMGlobalToLocal(ns.da, U, INSERT_VALUES, ns.Uloc));
+  PetscCall(VecGetArrayRead(ns.Uloc, &u));
+  PetscCall(VecGetArrayRead(ns.maskL, &mk));
+  implicit_gradient<Shape>(P, LocalView(ns, const_cast<double *>(u)),
+                           LocalView(ns, const_cast<double *>(mk)), ns.G.data());
+  PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
+  PetscCall(VecRestoreArrayRead(ns.Uloc, &u));
+  implicit_deformation(P.n, ns.G.data(), P.F, ns.Fnew.data());
+  for (size_t k = 0; k < sim.mats.size(); ++k) {
+    StressBatch b;
+    b.n = static_cast<int>(sim.mat_idx[k].size());
+    if (b.n == 0) continue;
+    b.idx = sim.mat_idx[k].data();
+    b.dudx = ns.G.data();
+    b.F = ns.Fnew.data();
+    b.stress = ns.snew.data();
+    b.eps_p = ns.epsp.data();
+    sim.mats[k].model->update_stress(b);
+  }
+  implicit_piola(P.n, ns.G.data(), ns.snew.data(), ns.Pk.data());
+  PetscFunctionReturn(0);
+}
+
+// R = f_int(du) - lambda f_ext on free dofs, kref du on the others.
+template <class Shape> PetscErrorCode Residual(NewtonSolver &ns, Vec U, Vec R) {
+  ParticleView P;
+  double *r;
+  PetscFunctionBeginUser;
+  PetscCall(ParticlesGetView(ns.sim->parts, P));
+  PetscCall(TrialState<Shape>(ns, U, P));
+  PetscCall(VecZeroEntries(ns.Rloc));
+  PetscCall(VecGetArray(ns.Rloc, &r));
+  implicit_internal_force<Shape>(P, ns.Pk.data(), LocalView(ns, r));
+  PetscCall(VecRestoreArray(ns.Rloc, &r));
+  PetscCall(ParticlesRestoreView(ns.sim->parts, P));
+  PetscCall(VecZeroEntries(R));
+  PetscCall(DMLocalToGlobal(ns.da, ns.Rloc, ADD_VALUES, R));
+  PetscCall(VecAXPY(R, -ns.lambda, ns.fext));
+  const double *u, *mk;
+  PetscInt n;
+  PetscCall(VecGetLocalSize(R, &n));
+  PetscCall(VecGetArray(R, &r));
+  PetscCall(VecGetArrayRead(U, &u));
+  PetscCall(VecGetArrayRead(ns.maskG, &mk));
+  for (PetscInt q = 0; q < n; ++q)
+    if (mk[q] == 0.0) r[q] = ns.kref * u[q];
+  PetscCall(VecRestoreArrayRead(ns.maskG, &mk));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  PetscCall(VecRestoreArray(R, &r));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FormResidual(SNES, Vec U, Vec R, void *ctx) {
+  NewtonSolver &ns = *static_cast<NewtonSolver *>(ctx);
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_residual, 0, 0, 0, 0));
+  if (ns.sim->set.shape == ShapeKind::Linear)
+    PetscCall(Residual<LinearShape>(ns, U, R));
+  else
+    PetscCall(Residual<UGIMPShape>(ns, U, R));
+  PetscCall(PetscLogEventEnd(ev_residual, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+// The consistent tangent: each particle's stiffness gathered per node (add_particle_blocks),
+// then one insertion per node row over its free, supported dofs; kref on the diagonal of the
+// others.
+template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
+  constexpr int NN = Weights<Shape>::NN, ND = NN * DIM;
+  Simulation &sim = *ns.sim;
+  ParticleView P;
+  Weights<Shape> W;
+  double A[DIM * DIM * DIM * DIM], K[ND * ND];
+  const double *mk;
+  PetscFunctionBeginUser;
+  PetscCall(MatZeroEntries(B));
+  NodeBlocks NB;
+  NB.w = ns.width;
+  const int nb = (2 * NB.w + 1) * (2 * NB.w + 1);
+  for (int d = 0; d < DIM; ++d) {
+    NB.gs[d] = ns.gs[d];
+    NB.gm[d] = ns.gm[d];
+  }
+  ns.blocks.assign(static_cast<size_t>(ns.gm[0] * ns.gm[1]) * nb * DIM * DIM, 0.0);
+  NB.data = ns.blocks.data();
+  PetscCall(ParticlesGetView(sim.parts, P));
+  PetscCall(TrialState<Shape>(ns, U, P));
+  for (PetscInt p = 0; p < P.n; ++p) {
+    const PetscInt mat = P.mat[p];
+    piola_tangent(ns.kind[mat], sim.mats[mat].el, &ns.G[p * DIM * DIM], P.stress + p * NSTRESS,
+                  &ns.snew[p * NSTRESS], P.F + p * DIM * DIM, A);
+    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, sim.grid.origin, sim.grid.h, W);
+    particle_stiffness<Shape>(W, P.vol[p], A, K);
+    add_particle_blocks<Shape>(W, K, NB);
+  }
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  PetscCall(VecGetArrayRead(ns.maskL, &mk));
+  const NodalView M = LocalView(ns, const_cast<double *>(mk));
+  std::vector<MatStencil> rows(DIM), cols(static_cast<size_t>(nb) * DIM);
+  std::vector<double> vals(static_cast<size_t>(DIM) * nb * DIM);
+  std::vector<const double *> src(static_cast<size_t>(nb) * DIM);
+  std::vector<int> ra(DIM), cb(static_cast<size_t>(nb) * DIM);
+  for (PetscInt j = ns.gs[1]; j < ns.gs[1] + ns.gm[1]; ++j)
+    for (PetscInt i = ns.gs[0]; i < ns.gs[0] + ns.gm[0]; ++i) {
+      int nr = 0, nc = 0;
+      for (int a = 0; a < DIM; ++a)
+        if (M.node(i, j)[a] != 0.0) {
+          rows[nr] = MatStencil{0, j, i, a};
+          ra[nr++] = a;
+        }
+      if (nr == 0) continue;
+      bool any = false;
+      for (int dj = -NB.w; dj <= NB.w; ++dj)
+        for (int di = -NB.w; di <= NB.w; ++di) {
+          const PetscInt ii = i + di, jj = j + dj;
+          if (ii < ns.gs[0] || ii >= ns.gs[0] + ns.gm[0] || jj < ns.gs[1] ||
+              jj >= ns.gs[1] + ns.gm[1])
+            continue;
+          const double *b = NB.block(i, j, di, dj);
+          for (int c = 0; c < DIM; ++c)
+            if (M.node(ii, jj)[c] != 0.0) {
+              cols[nc] = MatStencil{0, jj, ii, c};
+              src[nc] = b;
+              cb[nc++] = c;
+              for (int r = 0; r < nr; ++r) any = any || b[ra[r] * DIM + c] != 0.0;
+            }
+        }
+      if (!any) continue; // no particle of this rank couples this node
+      for (int r = 0; r < nr; ++r)
+        for (int c = 0; c < nc; ++c) vals[r * nc + c] = src[c][ra[r] * DIM + cb[c]];
+      PetscCall(MatSetValuesStencil(B, nr, rows.data(), nc, cols.data(), vals.data(), ADD_VALUES));
+    }
+  PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
+  PetscCall(VecGetArrayRead(ns.maskG, &mk));
+  for (PetscInt j = ns.s[1]; j < ns.s[1] + ns.m[1]; ++j)
+    for (PetscInt i = ns.s[0]; i < ns.s[0] + ns.m[0]; ++i)
+      for (int a = 0; a < DIM; ++a)
+        if (mk[((j - ns.s[1]) * ns.m[0] + (i - ns.s[0])) * DIM + a] == 0.0) {
+          MatStencil st{0, j, i, a};
+          PetscCall(MatSetValuesStencil(B, 1, &st, 1, &st, &ns.kref, ADD_VALUES));
+        }
+  PetscCall(VecRestoreArrayRead(ns.maskG, &mk));
+  PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FormJacobian(SNES, Vec U, Mat Jac, Mat B, void *ctx) {
+  NewtonSolver &ns = *static_cast<NewtonSolver *>(ctx);
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_jacobian, 0, 0, 0, 0));
+  if (ns.sim->set.shape == ShapeKind::Linear)
+    PetscCall(Tangent<LinearShape>(ns, U, B));
+  else
+    PetscCall(Tangent<UGIMPShape>(ns, U, B));
+  if (Jac != B) { // -snes_mf_operator and the like
+    PetscCall(MatAssemblyBegin(Jac, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(Jac, MAT_FINAL_ASSEMBLY));
+  }
+  PetscCall(PetscLogEventEnd(ev_jacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+// The unit load (explicit P2G's external force at the current positions) and the dof mask.
+PetscErrorCode Loads(NewtonSolver &ns) {
+  Simulation &sim = *ns.sim;
+  GridView G;
+  ParticleView P;
+  Load load; // factor 1
+  double *f, *mk;
+  PetscFunctionBeginUser;
+  for (int d = 0; d < DIM; ++d) load.gdir[d] = sim.set.gdir[d];
+  PetscCall(ParticlesGetView(sim.parts, P));
+  PetscCall(GridGetLocal(sim.grid, true, G));
+  if (sim.set.shape == ShapeKind::Linear)
+    p2g<LinearShape>(P, load, G);
+  else
+    p2g<UGIMPShape>(P, load, G);
+  if (!sim.traction_idx.empty()) p2g_traction(P, sim.loads, sim.traction_idx, 1.0, G);
+  PetscCall(GridRestoreLocal(sim.grid, G));
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  PetscCall(GridLocalToGlobalAdd(sim.grid));
+  PetscCall(GridGetGlobal(sim.grid, G));
+  double mmax = 0;
+  for (PetscInt j = ns.s[1]; j < ns.s[1] + ns.m[1]; ++j)
+    for (PetscInt i = ns.s[0]; i < ns.s[0] + ns.m[0]; ++i)
+      mmax = std::fmax(mmax, G.node(i, j)[GridDof::M]);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mmax, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
+  PetscCall(VecGetArray(ns.fext, &f));
+  PetscCall(VecGetArray(ns.maskG, &mk));
+  for (PetscInt j = ns.s[1]; j < ns.s[1] + ns.m[1]; ++j)
+    for (PetscInt i = ns.s[0]; i < ns.s[0] + ns.m[0]; ++i) {
+      const double *node = G.node(i, j);
+      const PetscInt q = ((j - ns.s[1]) * ns.m[0] + (i - ns.s[0])) * DIM;
+      bool held[DIM];
+      held_dofs(i, j, sim.ncell, sim.face, held);
+      const bool supported = node[GridDof::M] > kSmallCut * mmax;
+      for (int a = 0; a < DIM; ++a) {
+        f[q + a] = node[GridDof::FEXT + a];
+        mk[q + a] = supported && !held[a] ? 1.0 : 0.0;
+      }
+    }
+  PetscCall(VecRestoreArray(ns.maskG, &mk));
+  PetscCall(VecRestoreArray(ns.fext, &f));
+  PetscCall(GridRestoreGlobal(sim.grid, G));
+  PetscCall(VecSet(ns.maskL, 0.0)); // ghosts beyond the box stay 0: never free
+  PetscCall(DMGlobalToLocal(ns.da, ns.maskG, INSERT_VALUES, ns.maskL));
+  PetscFunctionReturn(0);
+}
+
+// The converged increment into the particles: x += sum S_i du_i, F, V = det(F) V0, stress and
+// plastic strain (the materials' own update with dudx = G), velocity 0; migration if needed.
+template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
+  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
+  Simulation &sim = *ns.sim;
+  ParticleView P;
+  Weights<Shape> W;
+  const double *u, *mk;
+  PetscFunctionBeginUser;
+  PetscCall(ParticlesGetView(sim.parts, P));
+  PetscCall(TrialState<Shape>(ns, ns.U, P)); // G and F_new of the converged du; Uloc holds du
+  PetscCall(VecGetArrayRead(ns.Uloc, &u));
+  PetscCall(VecGetArrayRead(ns.maskL, &mk));
+  const NodalView Uv = LocalView(ns, const_cast<double *>(u)),
+                  Mv = LocalView(ns, const_cast<double *>(mk));
+  const Grid &g = sim.grid;
+  const double hx = g.origin[0] + g.ncell[0] * g.h, hy = g.origin[1] + g.ncell[1] * g.h;
+  double bad[4] = {0, 0, 0, 0}; // count, pid, x, y
+  PetscInt left = 0;
+  for (PetscInt p = 0; p < P.n; ++p) {
+    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, g.origin, g.h, W);
+    double dx[DIM] = {0, 0};
+    for (int k = 0; k < NN; ++k) {
+      const PetscInt i = W.base[0] + k % NS, j = W.base[1] + k / NS;
+      for (int a = 0; a < DIM; ++a) dx[a] += W.w[k] * Mv.node(i, j)[a] * Uv.node(i, j)[a];
+    }
+    double *x = P.x + p * DIM, *F = P.F + p * DIM * DIM;
+    for (int a = 0; a < DIM; ++a) {
+      x[a] += dx[a];
+      P.v[p * DIM + a] = 0.0;
+    }
+    for (int q = 0; q < DIM * DIM; ++q) F[q] = ns.Fnew[p * DIM * DIM + q];
+    const double J = F[0] * F[3] - F[1] * F[2];
+    P.vol[p] = J * P.vol0[p];
+    if (!(J > 0.0) || !std::isfinite(x[0] + x[1]) ||
+        !(x[0] >= g.origin[0] && x[0] < hx && x[1] >= g.origin[1] && x[1] < hy)) {
+      if (bad[0]++ == 0) {
+        bad[1] = static_cast<double>(P.pid[p]);
+        bad[2] = x[0];
+        bad[3] = x[1];
+      }
+      continue;
+    }
+    const PetscInt cell[DIM] = {static_cast<PetscInt>((x[0] - g.origin[0]) / g.h),
+                                static_cast<PetscInt>((x[1] - g.origin[1]) / g.h)};
+    if (!g.owns_cell(cell)) ++left;
+  }
+  PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
+  PetscCall(VecRestoreArrayRead(ns.Uloc, &u));
+  for (size_t k = 0; k < sim.mats.size(); ++k) { // the committed update, in place
+    StressBatch b;
+    b.n = static_cast<int>(sim.mat_idx[k].size());
+    if (b.n == 0) continue;
+    b.idx = sim.mat_idx[k].data();
+    b.dudx = ns.G.data();
+    b.F = P.F;
+    b.stress = P.stress;
+    b.eps_p = P.eps_p;
+    sim.mats[k].model->update_stress(b);
+  }
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  struct {
+    double v;
+    int rank;
+  } loc = {bad[0], sim.rank}, glob;
+  PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
+  if (glob.v > 0) {
+    PetscCallMPI(MPI_Bcast(bad, 4, MPI_DOUBLE, glob.rank, sim.comm));
+    SETERRQ(sim.comm, PETSC_ERR_NOT_CONVERGED,
+            "-solver newton: load step %" PetscInt_FMT " (load factor %g) moved particle %.0f "
+            "off the grid or inverted it (x = (%g, %g) m). Raise -newton_load_steps (now "
+            "%" PetscInt_FMT ") or enlarge the grid.",
+            sim.run.load_steps + 1, ns.lambda, bad[1], bad[2], bad[3], ns.load_steps);
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &left, 1, MPIU_INT, MPI_SUM, sim.comm));
+  if (left > 0) {
+    PetscCall(ParticlesMigrate(sim.parts));
+    PetscCall(SimulationIndexParticles(sim));
+    ++sim.run.migrations;
+  }
+  PetscFunctionReturn(0);
+}
+
+// The largest displacement increment of a free dof, in cells.
+PetscErrorCode IncrementInCells(NewtonSolver &ns, double *frac) {
+  const double *u, *mk;
+  PetscInt n;
+  double mx = 0;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(ns.U, &n));
+  PetscCall(VecGetArrayRead(ns.U, &u));
+  PetscCall(VecGetArrayRead(ns.maskG, &mk));
+  for (PetscInt q = 0; q < n; ++q) mx = std::fmax(mx, mk[q] * std::fabs(u[q]));
+  PetscCall(VecRestoreArrayRead(ns.maskG, &mk));
+  PetscCall(VecRestoreArrayRead(ns.U, &u));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mx, 1, MPI_DOUBLE, MPI_MAX, ns.sim->comm));
+  *frac = mx / ns.sim->grid.h;
+  PetscFunctionReturn(0);
+}
+
+// One load step to load factor lambda from the committed state: SNES solve, then commit.
+// Returns the SNES reason (the state is committed only when it is positive) and, under
+// -newton_cell_fraction with `limit`, whether the converged step was rejected for moving the body
+// more than that fraction of a cell (not committed either).
+PetscErrorCode LoadStep(NewtonSolver &ns, double lambda, bool limit, SNESConvergedReason *reason,
+                        bool *rejected) {
+  Simulation &sim = *ns.sim;
+  PetscInt its = 0, lits = 0;
+  PetscFunctionBeginUser;
+  *rejected = false;
+  PetscCall(Loads(ns));
+  ns.lambda = lambda;
+  if (!ns.atol_given) {
+    double fn;
+    PetscCall(VecNorm(ns.fext, NORM_2, &fn));
+    PetscCall(SNESSetTolerances(ns.snes, kAtolShare * sim.set.tol * lambda * fn, PETSC_DEFAULT,
+                                PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  }
+  PetscCall(VecZeroEntries(ns.U));
+  PetscCall(PetscLogEventBegin(ev_solve, 0, 0, 0, 0));
+  PetscCall(SNESSolve(ns.snes, nullptr, ns.U));
+  PetscCall(PetscLogEventEnd(ev_solve, 0, 0, 0, 0));
+  PetscCall(SNESGetConvergedReason(ns.snes, reason));
+  PetscCall(SNESGetIterationNumber(ns.snes, &its));
+  PetscCall(SNESGetLinearSolveIterations(ns.snes, &lits));
+  sim.run.newton_its += its;
+  sim.run.linear_its += lits;
+  if (*reason <= 0) PetscFunctionReturn(0);
+  PetscCall(IncrementInCells(ns, &ns.frac));
+  if (limit && ns.cell_fraction > 0 && ns.frac > ns.cell_fraction) {
+    *rejected = true;
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscLogEventBegin(ev_commit, 0, 0, 0, 0));
+  if (sim.set.shape == ShapeKind::Linear)
+    PetscCall(Commit<LinearShape>(ns));
+  else
+    PetscCall(Commit<UGIMPShape>(ns));
+  PetscCall(PetscLogEventEnd(ev_commit, 0, 0, 0, 0));
+  ++sim.run.load_steps;
+  ++sim.run.step;
+  ++sim.run.stage_step;
+  sim.run.time = lambda; // pseudo-time: the load factor
+  if (!sim.set.quiet) {
+    double rn;
+    PetscCall(SNESGetFunctionNorm(ns.snes, &rn));
+    PetscCall(PetscPrintf(sim.comm,
+                          "  load step %4" PetscInt_FMT "  load %.4f  Newton its %2" PetscInt_FMT
+                          "  linear its %3" PetscInt_FMT "  |R| %.3e  max|du|/h %.2e  (%s)\n",
+                          sim.run.load_steps, lambda, its, lits, rn, ns.frac,
+                          SNESConvergedReasons[*reason]));
+  }
+  PetscCall(sim.scene->monitor(sim));
+  PetscFunctionReturn(0);
+}
+
+// What Newton cannot solve yet: a clear error, never a silent wrong answer.
+PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver &ns) {
+  const char *fix = "; use -solver relaxation";
+  PetscFunctionBeginUser;
+  PetscCheck(sim.chain_specs.empty(), sim.comm, PETSC_ERR_SUP,
+             "-solver newton does not support membrane chains yet (scene %s has %d)%s",
+             sim.set.scene.c_str(), (int)sim.chain_specs.size(), fix);
+  PetscCheck(sim.iface.type == InterfaceType::Bonded, sim.comm, PETSC_ERR_SUP,
+             "-solver newton does not support frictional interfaces (-interface_type %s) yet%s",
+             InterfaceTypeNames[(int)sim.iface.type], fix);
+  PetscCheck(sim.scene->stages() == 0, sim.comm, PETSC_ERR_SUP,
+             "-solver newton does not support stages yet (scene %s has %d: shrinkage, voids, "
+             "load increments up to collapse)%s",
+             sim.set.scene.c_str(), (int)sim.scene->stages(), fix);
+  PetscCheck(!sim.set.dynamic, sim.comm, PETSC_ERR_SUP,
+             "-solver newton is quasi-static: -dynamic needs -solver relaxation");
+  PetscCheck(!sim.set.fbar, sim.comm, PETSC_ERR_SUP, "-solver newton does not support -fbar yet%s",
+             fix);
+  PetscCheck(sim.set.restart.empty() && sim.set.checkpoint_every == 0, sim.comm, PETSC_ERR_SUP,
+             "-solver newton does not support -restart or -checkpoint_every yet%s", fix);
+  ns.kind.assign(sim.mats.size(), TangentKind::None);
+  for (size_t k = 0; k < sim.mats.size(); ++k) {
+    const Material &m = *sim.mats[k].model;
+    if (!std::strcmp(m.model(), "linear_elastic")) ns.kind[k] = TangentKind::LinearElastic;
+    if (!std::strcmp(m.model(), "neo_hookean")) ns.kind[k] = TangentKind::NeoHookean;
+    PetscCheck(ns.kind[k] != TangentKind::None, sim.comm, PETSC_ERR_SUP,
+               "-solver newton does not support -mat_%s_model %s yet (no consistent tangent; "
+               "linear_elastic and neo_hookean have one)%s",
+               sim.mats[k].name.c_str(), m.model(), fix);
+  }
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode NewtonSetup(Simulation &sim) {
+  PetscBool help = PETSC_FALSE, set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  auto ns = new NewtonSolver;
+  sim.newton = ns;
+  ns->sim = &sim;
+  PetscOptionsBegin(sim.comm, "newton_", "Implicit solver (-solver newton)", nullptr);
+  PetscCall(PetscOptionsInt("-load_steps",
+                            "Load steps from zero to the full load, 1..100000 (the fewest "
+                            "under -newton_cell_fraction; a step whose solve fails is halved up "
+                            "to -newton_max_cuts times)",
+                            nullptr, ns->load_steps, &ns->load_steps, nullptr));
+  PetscCall(PetscOptionsInt("-max_cuts", "Halvings of a failed load step, 0..30", nullptr,
+                            ns->max_cuts, &ns->max_cuts, nullptr));
+  PetscCall(PetscOptionsInt("-equilibrium_steps",
+                            "Most equilibrium steps at full load on the reset grid to reach -tol, "
+                            "0..1000",
+                            nullptr, ns->max_equilibrium, &ns->max_equilibrium, nullptr));
+  PetscCall(PetscOptionsReal("-cell_fraction",
+                             "Adaptive load steps: the largest displacement increment of a step "
+                             "in cells, 0 <= f <= 1 (0: off, the -newton_load_steps equal steps; "
+                             "the load-step error of the particle path is first order in it)",
+                             nullptr, ns->cell_fraction, &ns->cell_fraction, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(ns->cell_fraction >= 0 && ns->cell_fraction <= 1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-newton_cell_fraction must be in [0, 1] (got %g; 0: off)", ns->cell_fraction);
+  PetscCheck(ns->load_steps >= 1 && ns->load_steps <= 100000, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-newton_load_steps must be in 1..100000 (got %" PetscInt_FMT ")", ns->load_steps);
+  PetscCheck(ns->max_cuts >= 0 && ns->max_cuts <= 30, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-newton_max_cuts must be in 0..30 (got %" PetscInt_FMT ")", ns->max_cuts);
+  PetscCheck(
+      ns->max_equilibrium >= 0 && ns->max_equilibrium <= 1000, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+      "-newton_equilibrium_steps must be in 0..1000 (got %" PetscInt_FMT ")", ns->max_equilibrium);
+  if (!help) PetscCall(CheckSupported(sim, *ns));
+  if (!ev_residual) {
+    PetscClassId cls;
+    PetscCall(PetscClassIdRegister("pmpm newton", &cls));
+    PetscCall(PetscLogEventRegister("NewtonResidual", cls, &ev_residual));
+    PetscCall(PetscLogEventRegister("NewtonJacobian", cls, &ev_jacobian));
+    PetscCall(PetscLogEventRegister("NewtonSolve", cls, &ev_solve));
+    PetscCall(PetscLogEventRegister("NewtonCommit", cls, &ev_commit));
+  }
+  for (const auto &m : sim.mats) ns->kref = std::fmax(ns->kref, m.model->wave_modulus());
+
+  // The solve's DMDA: the explicit grid's nodes and partition, DIM dofs, a box stencil as wide as
+  // the shape's support (uGIMP: 3 nodes per direction, so couplings reach 2 nodes).
+  PetscInt M, N, px, py;
+  const PetscInt *lx, *ly;
+  PetscCall(DMDAGetInfo(sim.grid.da, nullptr, &M, &N, nullptr, &px, &py, nullptr, nullptr, nullptr,
+                        nullptr, nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(sim.grid.da, &lx, &ly, nullptr));
+  const PetscInt width =
+      sim.set.shape == ShapeKind::Linear ? LinearShape::NS - 1 : UGIMPShape::NS - 1;
+  ns->width = width;
+  PetscCall(DMDACreate2d(sim.comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX, M, N,
+                         px, py, DIM, width, lx, ly, &ns->da));
+  PetscCall(DMSetUp(ns->da));
+  PetscCall(DMDAGetCorners(ns->da, &ns->s[0], &ns->s[1], nullptr, &ns->m[0], &ns->m[1], nullptr));
+  PetscCall(DMDAGetGhostCorners(ns->da, &ns->gs[0], &ns->gs[1], nullptr, &ns->gm[0], &ns->gm[1],
+                                nullptr));
+  if (!help) PetscCall(DMCreateMatrix(ns->da, &ns->J)); // -help: the options only, no matrix
+  PetscCall(DMCreateGlobalVector(ns->da, &ns->U));
+  PetscCall(VecDuplicate(ns->U, &ns->R));
+  PetscCall(VecDuplicate(ns->U, &ns->fext));
+  PetscCall(VecDuplicate(ns->U, &ns->maskG));
+  PetscCall(DMCreateLocalVector(ns->da, &ns->Uloc));
+  PetscCall(VecDuplicate(ns->Uloc, &ns->Rloc));
+  PetscCall(VecDuplicate(ns->Uloc, &ns->maskL));
+
+  PetscCall(SNESCreate(sim.comm, &ns->snes));
+  PetscCall(SNESSetDM(ns->snes, ns->da));
+  PetscCall(SNESSetFunction(ns->snes, ns->R, FormResidual, ns));
+  PetscCall(SNESSetJacobian(ns->snes, ns->J, ns->J, FormJacobian, ns));
+  PetscCall(SNESSetType(ns->snes, SNESNEWTONLS));
+  SNESLineSearch ls;
+  PetscCall(SNESGetLineSearch(ns->snes, &ls));
+  PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBT));
+  PetscCall(SNESSetTolerances(ns->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 50, PETSC_DEFAULT));
+  KSP ksp;
+  PC pc;
+  PetscCall(SNESGetKSP(ns->snes, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(SNESSetFromOptions(ns->snes));
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-snes_atol", &set));
+  ns->atol_given = set;
+  // read by SNESSolve, after main's unused-option check: mark them used here
+  for (const char *o : {"-snes_test_jacobian", "-snes_test_jacobian_view"})
+    PetscCall(PetscOptionsHasName(nullptr, nullptr, o, &set));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NewtonDestroy(Simulation &sim) {
+  NewtonSolver *ns = sim.newton;
+  PetscFunctionBeginUser;
+  if (!ns) PetscFunctionReturn(0);
+  PetscCall(SNESDestroy(&ns->snes));
+  PetscCall(MatDestroy(&ns->J));
+  for (Vec *v : {&ns->U, &ns->R, &ns->fext, &ns->maskG, &ns->Uloc, &ns->Rloc, &ns->maskL})
+    PetscCall(VecDestroy(v));
+  PetscCall(DMDestroy(&ns->da));
+  delete ns;
+  sim.newton = nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Newton(Simulation &sim) {
+  NewtonSolver &ns = *sim.newton;
+  RunState &run = sim.run;
+  const Settings &s = sim.set;
+  PetscFunctionBeginUser;
+  sim.resume = false;
+  run.stop_stage = false;
+  run.converged = false;
+  run.stage_step = 0;
+  const double t_start = MPI_Wtime();
+  if (!s.quiet)
+    PetscCall(PetscPrintf(sim.comm,
+                          "pmpm %s: %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g m, shape "
+                          "%s, -solver newton: %" PetscInt_FMT " load steps, tolerance %g\n",
+                          s.scene.c_str(), sim.ncell[0], sim.ncell[1], s.h,
+                          ShapeKindNames[(int)s.shape], ns.load_steps, s.tol));
+  // load steps, each halved while its solve fails. Under -newton_cell_fraction f the first step
+  // sizes them all: from the unloaded state its increment is the load's alone, |du| / h per unit
+  // load (later steps also carry the grid reset's correction, which does not shrink with them),
+  // so the step count is ceil(that / f), the first step redone when it moved more than f cells.
+  double nominal = 1.0 / double(ns.load_steps);
+  double lambda = 0, dl = nominal;
+  PetscInt cuts = 0;
+  bool sized = ns.cell_fraction <= 0;
+  while (lambda < 1.0 - 1e-12) {
+    const double target = std::fmin(1.0, lambda + dl);
+    SNESConvergedReason reason;
+    bool rejected;
+    PetscCall(LoadStep(ns, target, !sized, &reason, &rejected));
+    if (!sized && reason > 0) {
+      sized = true;
+      const double steps = std::ceil(ns.frac / (ns.cell_fraction * target) * (1 - 1e-12));
+      nominal = std::fmin(nominal, 1.0 / std::fmax(steps, 1.0));
+      if (!s.quiet)
+        PetscCall(PetscPrintf(sim.comm,
+                              "  -newton_cell_fraction %g: %.0f load steps (the first moved "
+                              "%.3g cells per unit load)%s\n",
+                              ns.cell_fraction, 1.0 / nominal, ns.frac / target,
+                              rejected ? "; first step redone" : ""));
+      dl = nominal;
+      if (rejected) continue;
+    }
+    if (reason <= 0) {
+      PetscCheck(++cuts <= ns.max_cuts, sim.comm, PETSC_ERR_NOT_CONVERGED,
+                 "-solver newton: the load step to load factor %g did not converge (SNES: %s) "
+                 "after %" PetscInt_FMT " halvings. Raise -newton_load_steps (now %" PetscInt_FMT
+                 ") or -newton_max_cuts, or see -snes_converged_reason -snes_monitor.",
+                 target, SNESConvergedReasons[reason], ns.max_cuts, ns.load_steps);
+      dl *= 0.5;
+      if (!s.quiet)
+        PetscCall(PetscPrintf(sim.comm, "  load step to %.4f failed (%s): step halved to %.4g\n",
+                              target, SNESConvergedReasons[reason], dl));
+      continue;
+    }
+    lambda = target;
+    dl = std::fmin(nominal, 2.0 * dl); // back toward the nominal step after a cut
+  }
+  // equilibrium steps on the reset grid until relaxation's criterion holds
+  PetscCall(StaticResidual(sim, s.shape, &run.ratio));
+  for (PetscInt k = 0; k < ns.max_equilibrium && !(run.ratio <= s.tol); ++k) {
+    SNESConvergedReason reason;
+    bool rejected;
+    PetscCall(LoadStep(ns, 1.0, false, &reason, &rejected));
+    PetscCheck(reason > 0, sim.comm, PETSC_ERR_NOT_CONVERGED,
+               "-solver newton: an equilibrium step at full load did not converge (SNES: %s)",
+               SNESConvergedReasons[reason]);
+    PetscCall(StaticResidual(sim, s.shape, &run.ratio));
+  }
+  run.converged = run.ratio <= s.tol;
+  run.stage_seconds = MPI_Wtime() - t_start;
+  run.wall_seconds += run.stage_seconds;
+  if (!s.quiet)
+    PetscCall(PetscPrintf(
+        sim.comm,
+        "%s: unbalanced-force ratio %.3e %s %g after %" PetscInt_FMT " load steps, %" PetscInt_FMT
+        " Newton and %" PetscInt_FMT " linear iterations (%.2f s)\n",
+        run.converged ? "converged" : "NOT converged", run.ratio, run.converged ? "<=" : ">", s.tol,
+        run.load_steps, run.newton_its, run.linear_its, run.stage_seconds));
+  PetscFunctionReturn(0);
+}
+
+} // namespace pmpm
