@@ -1,15 +1,18 @@
-// cpGIMP (Wallstedt & Guilkey 2008, "convected particle domain" GIMP): uGIMP's block-averaged
-// hat with a half-size that follows the deformation, l_d = l0_d |F_dd| (the diagonal of F).
-// Under a stretch the blocks grow with the body and keep tiling it, so the body's end, the
-// traction face and the leading node's mass move with the material; uGIMP's fixed blocks stop
-// tiling past about 40 % stretch (README, "Shapes whose blocks follow the deformation").
+// cpGIMP (after Wallstedt & Guilkey 2008, "convected particle domain" GIMP): uGIMP's
+// block-averaged hat with a half-size that follows the deformation, l_d = l0_d V_dd, V_dd the
+// diagonal of the left stretch tensor V = sqrt(F F^T) (the spatial-frame stretch along axis d:
+// sum_i lambda_i (n_i . e_d)^2 over the principal stretches lambda_i and directions n_i). Under a
+// stretch the blocks grow with the body and keep tiling it, so the body's end, the traction face
+// and the leading node's mass move with the material; uGIMP's fixed blocks stop tiling past about
+// 40 % stretch (README, "cpGIMP: particle blocks that follow the deformation").
 //
-// Why the diagonal and not the principal stretches: on the bar and the column F is diagonal and
-// both give the same block; under a simple shear F = [[1, g], [0, 1]] the sheared rows still tile
-// the body with their undeformed height, which the diagonal keeps (F_yy = 1, block area
-// l_x l_y = J l0_x l0_y) while the stretch of the material edge, sqrt(1 + g^2), overlaps the rows.
-// A rigid rotation by theta shrinks the diagonal block by cos(theta); |F_dd| is floored at
-// kMinStretch so a block never degenerates (it then acts as the linear hat at the centre).
+// Why V_dd and not F_dd (Wallstedt & Guilkey's diagonal): both are the same block when F is
+// diagonal (the bar, the column; measured equal there), but a rigid rotation by theta shrinks the
+// F_dd block by cos(theta): the rotating block (options/block.opts, -block_omega 10) with F_dd
+// inverts a particle at step 389, a quarter turn; with V_dd (= I under any rotation) it keeps
+// uGIMP's blocks and runs its 3.2 turns. In simple shear, F = [[1, g], [0, 1]], V_dd = 1 + O(g^2)
+// where F_dd = 1: the blocks overlap by O(g^2). V has a closed form in 2D:
+// V = (B + J I) / sqrt(tr B + 2 J), B = F F^T, J = |det F|.
 //
 // Support: a block of half-size l <= h (in cell units li <= 1) starting in cell base spans at most
 // three cells, NS = 4 nodes, inside the grid's two ghost layers (grid.cpp). A larger block is
@@ -23,14 +26,15 @@ struct CPGIMPShape {
   static constexpr int NS = 4;
   static constexpr const char *name = "cpgimp";
   static constexpr double kMaxHalf = 1.0;     // largest half-size, in cells, the support holds
-  static constexpr double kMinStretch = 1e-3; // floor on |F_dd|
+  static constexpr double kMinStretch = 1e-3; // floor on V_dd (a collapsed F only)
 
-  // The current half-size: buf_d = lp_d max(|F_dd|, kMinStretch); F row-major DIM x DIM.
+  // The current half-size: buf_d = lp_d max(V_dd, kMinStretch); F row-major DIM x DIM.
   static const double *half(const double *lp, const double *F, double *buf) {
-    for (int d = 0; d < DIM; ++d) {
-      const double s = std::fabs(F[d * DIM + d]);
-      buf[d] = lp[d] * (s > kMinStretch ? s : kMinStretch);
-    }
+    const double B00 = F[0] * F[0] + F[1] * F[1], B11 = F[2] * F[2] + F[3] * F[3];
+    const double J = std::fabs(F[0] * F[3] - F[1] * F[2]);
+    const double inv = 1.0 / std::sqrt(B00 + B11 + 2.0 * J); // F = 0 only: inf, V NaN, floored
+    const double V[DIM] = {(B00 + J) * inv, (B11 + J) * inv};
+    for (int d = 0; d < DIM; ++d) buf[d] = lp[d] * (V[d] > kMinStretch ? V[d] : kMinStretch);
     return buf;
   }
 

@@ -314,19 +314,50 @@ void test_cpgimp_equals_ugimp(Lcg &r) {
   }
 }
 
-// The half-size follows F's diagonal, |F_dd| floored at kMinStretch; a one-cell block touches
-// four nodes per direction and its weights have exactly zero beyond them.
+// The half-size follows V_dd, V = sqrt(F F^T), computed here independently from B's eigenpairs
+// (V_dd = sum_i sqrt(mu_i) (n_i . e_d)^2); a rigid rotation keeps the block (V = I), a stretch
+// then a quarter turn stretches the other axis, and a collapsed F is floored at kMinStretch.
 void test_cpgimp_half_size() {
   const double lp[DIM] = {0.25 * H, 0.125 * H};
   double lb[DIM];
-  const double F[DIM * DIM] = {1.7, 0.3, -0.2, 0.55}; // stretch x, compress y, some shear
-  const double *l = CPGIMPShape::half(lp, F, lb);
-  CHECK_CLOSE(l[0], 1.7 * lp[0], 1e-16);
-  CHECK_CLOSE(l[1], 0.55 * lp[1], 1e-16);
-  const double Frot[DIM * DIM] = {0.0, -1.0, 1.0, 0.0}; // quarter turn: F_dd = 0
-  l = CPGIMPShape::half(lp, Frot, lb);
-  CHECK_CLOSE(l[0], CPGIMPShape::kMinStretch * lp[0], 1e-18);
-  CHECK(l[1] > 0.0);
+  {
+    const double F[DIM * DIM] = {1.7, 0.3, -0.2, 0.55}; // stretch x, compress y, some shear
+    const double B00 = F[0] * F[0] + F[1] * F[1], B11 = F[2] * F[2] + F[3] * F[3];
+    const double B01 = F[0] * F[2] + F[1] * F[3];
+    const double m = 0.5 * (B00 + B11), r = std::sqrt(0.25 * (B00 - B11) * (B00 - B11) + B01 * B01);
+    const double mu[2] = {m + r, m - r};
+    double V[DIM] = {0, 0};
+    for (int i = 0; i < 2; ++i) {
+      double n0 = B01, n1 = mu[i] - B00; // (B - mu I) n = 0
+      const double nn = std::hypot(n0, n1);
+      n0 /= nn;
+      n1 /= nn;
+      V[0] += std::sqrt(mu[i]) * n0 * n0;
+      V[1] += std::sqrt(mu[i]) * n1 * n1;
+    }
+    const double *l = CPGIMPShape::half(lp, F, lb);
+    // O(1) entries, a square root and a division each way: round-off a few 1e-16 relative
+    CHECK_CLOSE(l[0], V[0] * lp[0], 1e-14 * lp[0]);
+    CHECK_CLOSE(l[1], V[1] * lp[1], 1e-14 * lp[1]);
+  }
+  {
+    const double c = std::cos(0.7), s = std::sin(0.7);
+    const double R[DIM * DIM] = {c, -s, s, c}; // rigid rotation: the block is unchanged
+    const double *l = CPGIMPShape::half(lp, R, lb);
+    CHECK_CLOSE(l[0], lp[0], 1e-15 * lp[0]);
+    CHECK_CLOSE(l[1], lp[1], 1e-15 * lp[1]);
+    const double Q[DIM * DIM] = {0.0, -1.0, 1.5, 0.0}; // diag(1.5, 1) then a quarter turn
+    l = CPGIMPShape::half(lp, Q, lb);
+    CHECK_CLOSE(l[0], lp[0], 1e-15 * lp[0]);
+    CHECK_CLOSE(l[1], 1.5 * lp[1], 1e-15 * lp[1]);
+    const double D[DIM * DIM] = {1.7, 0.0, 0.0, 0.55}; // diagonal F: V = F
+    l = CPGIMPShape::half(lp, D, lb);
+    CHECK_CLOSE(l[0], 1.7 * lp[0], 1e-15 * lp[0]);
+    CHECK_CLOSE(l[1], 0.55 * lp[1], 1e-15 * lp[1]);
+    const double Z[DIM * DIM] = {0.0, 0.0, 0.0, 0.0}; // collapsed
+    l = CPGIMPShape::half(lp, Z, lb);
+    CHECK(l[0] == CPGIMPShape::kMinStretch * lp[0] && l[1] == CPGIMPShape::kMinStretch * lp[1]);
+  }
   // the largest block, l = h, centred at xi = 5.5: spans [4.5, 6.5], nodes 4..7, all non-zero
   int base;
   double w[CPGIMPShape::NS], dw[CPGIMPShape::NS];
