@@ -11,7 +11,7 @@ Errors are L2 over the particles (equal initial volumes), relative to the exact 
 Measured (1 and 2 ranks alike): cpgimp 2244 steps, tip stretch 1.6008, stress 0.72 %,
 displacement 0.025 %; pmpm stops at step 1540 (J <= 0 at the loaded end, stretch about 1.4), a
 clean failure that counts as its degradation here. At -ppc 3
-pmpm converges with 9.0 % stress error and cpgimp with 1.0 %. At -ppc 2 both shapes stop
+pmpm converges with 9.0 % stress error and cpgimp with 0.71 %. At -ppc 2 both shapes stop
 ("particle speed exceeds the material wave speed", the loaded end's corner, at about 40 %
 stretch), and at -ppc 1 both stop even at 10 % stretch: not a block-size effect, left open.
 
