@@ -11,7 +11,7 @@ namespace pmpm {
 
 namespace {
 PetscLogEvent ev_p2g, ev_l2g, ev_grid, ev_g2l, ev_g2p, ev_musl, ev_stress, ev_migrate, ev_iface,
-    ev_chain, ev_contact, ev_fbar;
+    ev_chain, ev_contact, ev_fbar, ev_support;
 
 template <class Shape>
 PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport &rep) {
@@ -280,6 +280,7 @@ PetscErrorCode LogRegister() {
   PetscCall(PetscLogEventRegister("Chain", cls, &ev_chain));
   PetscCall(PetscLogEventRegister("Contact", cls, &ev_contact));
   PetscCall(PetscLogEventRegister("FBar", cls, &ev_fbar));
+  PetscCall(PetscLogEventRegister("CpgimpSupport", cls, &ev_support));
   PetscCall(PetscLogEventRegister("StressUpdate", cls, &ev_stress));
   PetscCall(PetscLogEventRegister("Migrate", cls, &ev_migrate));
   PetscFunctionReturn(0);
@@ -291,9 +292,10 @@ namespace {
 PetscErrorCode CheckSupport(Simulation &sim) {
   ParticleView P;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_support, 0, 0, 0, 0));
   PetscCall(ParticlesGetView(sim.parts, P));
   const double lmax = CPGIMPShape::kMaxHalf * sim.grid.h;
-  // [ratio, pid, x, y, direction, F_dd, l0] of this rank's first outgrown block
+  // [ratio, pid, x, y, direction, stretch V_dd, l0] of this rank's first outgrown block
   double info[7] = {0, 0, 0, 0, 0, 0, 0};
   for (PetscInt p = 0; p < P.n && info[0] == 0; ++p) {
     double lb[DIM];
@@ -301,7 +303,7 @@ PetscErrorCode CheckSupport(Simulation &sim) {
     for (int d = 0; d < DIM; ++d)
       if (l[d] > lmax) {
         const double r[7] = {l[d] / lmax,      (double)P.pid[p], P.x[p * DIM],
-                             P.x[p * DIM + 1], (double)d,        P.F[p * DIM * DIM + d * DIM + d],
+                             P.x[p * DIM + 1], (double)d,        l[d] / P.lp[p * DIM + d],
                              P.lp[p * DIM + d]};
         for (int k = 0; k < 7; ++k) info[k] = r[k];
         break;
@@ -313,11 +315,13 @@ PetscErrorCode CheckSupport(Simulation &sim) {
     int rank;
   } in = {info[0], sim.rank}, out;
   PetscCallMPI(MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
+  PetscCall(PetscLogEventEnd(ev_support, 0, 0, 0, 0));
   if (out.v == 0) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Bcast(info, 7, MPI_DOUBLE, out.rank, sim.comm));
   SETERRQ(sim.comm, PETSC_ERR_NOT_CONVERGED,
-          "cpGIMP support outgrown at step %" PetscInt_FMT ": particle %.0f at x = (%g, %g) m has "
-          "F_%s%s = %g, so its half-size %g m (initially %g m) exceeds one cell h = %g m, the "
+          "cpGIMP support outgrown at step %" PetscInt_FMT ": particle %.0f at x = (%g, %g) m is "
+          "stretched by V_%s%s = %g, so its half-size %g m (initially %g m) exceeds one cell h = "
+          "%g m, the "
           "largest block the 4-node support holds (stretch 2 at -ppc 1, 4 at -ppc 2). Raise -ppc "
           "(smaller initial blocks), or use -shape pmpm.",
           sim.run.step, info[1], info[2], info[3], info[4] == 0 ? "x" : "y",
