@@ -4,13 +4,14 @@
 #include "pmpm/cycle.hpp"
 #include "pmpm/antilock.hpp"
 #include "pmpm/degradation.hpp"
+#include "pmpm/shape_cpgimp.hpp"
 #include <cmath>
 
 namespace pmpm {
 
 namespace {
 PetscLogEvent ev_p2g, ev_l2g, ev_grid, ev_g2l, ev_g2p, ev_musl, ev_stress, ev_migrate, ev_iface,
-    ev_chain, ev_contact, ev_fbar;
+    ev_chain, ev_contact, ev_fbar, ev_support;
 
 template <class Shape>
 PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport &rep) {
@@ -24,7 +25,8 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   PetscCall(PetscLogEventBegin(ev_p2g, 0, 0, 0, 0));
   PetscCall(GridGetLocal(g, true, G));
   p2g<Shape>(P, load, G);
-  if (!sim.traction_idx.empty()) p2g_traction(P, sim.loads, sim.traction_idx, load.factor, G);
+  if (!sim.traction_idx.empty())
+    p2g_traction<Shape>(P, sim.loads, sim.traction_idx, load.factor, G);
   PetscCall(GridRestoreLocal(g, G));
   PetscCall(PetscLogEventEnd(ev_p2g, 0, 0, 0, 0));
   // 1a. Membrane chains: their points' mass, momentum, axial and external forces into their own
@@ -279,10 +281,54 @@ PetscErrorCode LogRegister() {
   PetscCall(PetscLogEventRegister("Chain", cls, &ev_chain));
   PetscCall(PetscLogEventRegister("Contact", cls, &ev_contact));
   PetscCall(PetscLogEventRegister("FBar", cls, &ev_fbar));
+  PetscCall(PetscLogEventRegister("CpgimpSupport", cls, &ev_support));
   PetscCall(PetscLogEventRegister("StressUpdate", cls, &ev_stress));
   PetscCall(PetscLogEventRegister("Migrate", cls, &ev_migrate));
   PetscFunctionReturn(0);
 }
+
+namespace {
+// cpGIMP: every block must fit the 4-node support for the next step (half-size <= one cell);
+// otherwise stop with the particle, its stretch and what to change.
+PetscErrorCode CheckSupport(Simulation &sim) {
+  ParticleView P;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ev_support, 0, 0, 0, 0));
+  PetscCall(ParticlesGetView(sim.parts, P));
+  const double lmax = CPGIMPShape::kMaxHalf * sim.grid.h;
+  // [ratio, pid, x, y, direction, stretch V_dd, l0] of this rank's first outgrown block
+  double info[7] = {0, 0, 0, 0, 0, 0, 0};
+  for (PetscInt p = 0; p < P.n && info[0] == 0; ++p) {
+    double lb[DIM];
+    const double *l = CPGIMPShape::half(P.lp + p * DIM, P.F + p * DIM * DIM, lb);
+    for (int d = 0; d < DIM; ++d)
+      if (l[d] > lmax) {
+        const double r[7] = {l[d] / lmax,      (double)P.pid[p], P.x[p * DIM],
+                             P.x[p * DIM + 1], (double)d,        l[d] / P.lp[p * DIM + d],
+                             P.lp[p * DIM + d]};
+        for (int k = 0; k < 7; ++k) info[k] = r[k];
+        break;
+      }
+  }
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  struct {
+    double v;
+    int rank;
+  } in = {info[0], sim.rank}, out;
+  PetscCallMPI(MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
+  PetscCall(PetscLogEventEnd(ev_support, 0, 0, 0, 0));
+  if (out.v == 0) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Bcast(info, 7, MPI_DOUBLE, out.rank, sim.comm));
+  SETERRQ(sim.comm, PETSC_ERR_NOT_CONVERGED,
+          "cpGIMP support outgrown at step %" PetscInt_FMT ": particle %.0f at x = (%g, %g) m is "
+          "stretched by V_%s%s = %g, so its half-size %g m (initially %g m) exceeds one cell h = "
+          "%g m, the "
+          "largest block the 4-node support holds (stretch 2 at -ppc 1, 4 at -ppc 2). Raise -ppc "
+          "(smaller initial blocks), or use -shape pmpm.",
+          sim.run.step, info[1], info[2], info[3], info[4] == 0 ? "x" : "y",
+          info[4] == 0 ? "x" : "y", info[5], info[0] * lmax, info[6], sim.grid.h);
+}
+} // namespace
 
 PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &rep) {
   PetscFunctionBeginUser;
@@ -293,6 +339,9 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &re
     break;
   case ShapeKind::UGIMP:
     PetscCall(StepWith<UGIMPShape>(sim, load, dt, rep));
+    break;
+  case ShapeKind::CPGIMP:
+    PetscCall(StepWith<CPGIMPShape>(sim, load, dt, rep));
     break;
   }
 
@@ -354,6 +403,7 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &re
     ++sim.run.migrations;
     PetscCall(PetscLogEventEnd(ev_migrate, 0, 0, 0, 0));
   }
+  if (sim.set.shape == ShapeKind::CPGIMP) PetscCall(CheckSupport(sim));
   PetscFunctionReturn(0);
 }
 
@@ -370,11 +420,21 @@ PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio) {
   gp.prescribed = &sim.prescribed;
   PetscCall(ParticlesGetView(sim.parts, P));
   PetscCall(GridGetLocal(g, true, G));
-  if (shape == ShapeKind::Linear)
+  const bool tr = !sim.traction_idx.empty();
+  switch (shape) {
+  case ShapeKind::Linear:
     p2g<LinearShape>(P, load, G);
-  else
+    if (tr) p2g_traction<LinearShape>(P, sim.loads, sim.traction_idx, load.factor, G);
+    break;
+  case ShapeKind::UGIMP:
     p2g<UGIMPShape>(P, load, G);
-  if (!sim.traction_idx.empty()) p2g_traction(P, sim.loads, sim.traction_idx, load.factor, G);
+    if (tr) p2g_traction<UGIMPShape>(P, sim.loads, sim.traction_idx, load.factor, G);
+    break;
+  case ShapeKind::CPGIMP:
+    p2g<CPGIMPShape>(P, load, G);
+    if (tr) p2g_traction<CPGIMPShape>(P, sim.loads, sim.traction_idx, load.factor, G);
+    break;
+  }
   PetscCall(GridRestoreLocal(g, G));
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscCall(GridLocalToGlobalAdd(g));

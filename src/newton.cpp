@@ -252,11 +252,14 @@ PetscErrorCode Loads(NewtonSolver &ns) {
   for (int d = 0; d < DIM; ++d) load.gdir[d] = sim.set.gdir[d];
   PetscCall(ParticlesGetView(sim.parts, P));
   PetscCall(GridGetLocal(sim.grid, true, G));
-  if (sim.set.shape == ShapeKind::Linear)
+  const bool tr = !sim.traction_idx.empty();
+  if (sim.set.shape == ShapeKind::Linear) {
     p2g<LinearShape>(P, load, G);
-  else
+    if (tr) p2g_traction<LinearShape>(P, sim.loads, sim.traction_idx, 1.0, G);
+  } else {
     p2g<UGIMPShape>(P, load, G);
-  if (!sim.traction_idx.empty()) p2g_traction(P, sim.loads, sim.traction_idx, 1.0, G);
+    if (tr) p2g_traction<UGIMPShape>(P, sim.loads, sim.traction_idx, 1.0, G);
+  }
   PetscCall(GridRestoreLocal(sim.grid, G));
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscCall(GridLocalToGlobalAdd(sim.grid));
@@ -461,6 +464,10 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver &ns) {
   PetscCheck(!sim.set.dynamic, sim.comm, PETSC_ERR_SUP,
              "-solver newton is quasi-static: -dynamic needs -solver relaxation");
   PetscCheck(!sim.set.fbar, sim.comm, PETSC_ERR_SUP, "-solver newton does not support -fbar yet%s",
+             fix);
+  PetscCheck(sim.set.shape != ShapeKind::CPGIMP, sim.comm, PETSC_ERR_SUP,
+             "-solver newton does not support -shape cpgimp yet (its blocks change within a load "
+             "step): use -shape pmpm or mpm with it%s",
              fix);
   PetscCheck(sim.set.restart.empty() && sim.set.checkpoint_every == 0, sim.comm, PETSC_ERR_SUP,
              "-solver newton does not support -restart or -checkpoint_every yet%s", fix);

@@ -1,6 +1,7 @@
 #include "pmpm/output.hpp"
 #include "pmpm/balance.hpp"
 #include "pmpm/parallel_h5.hpp"
+#include "pmpm/shape_cpgimp.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -142,7 +143,12 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
   PetscCall(WriteRowsCollective(sim.comm, gid, "F", n, DIM * DIM, P.F));
   PetscCall(WriteRowsCollective(sim.comm, gid, "volume", n, 1, P.vol));
   PetscCall(WriteRowsCollective(sim.comm, gid, "volume0", n, 1, P.vol0));
-  PetscCall(WriteRowsCollective(sim.comm, gid, "halfsize", n, DIM, P.lp));
+  if (sim.set.shape == ShapeKind::CPGIMP) { // the block the weights see: cpGIMP's deformed one
+    for (PetscInt p = 0; p < n; ++p)
+      CPGIMPShape::half(P.lp + p * DIM, P.F + p * DIM * DIM, &derived[p * DIM]);
+    PetscCall(WriteRowsCollective(sim.comm, gid, "halfsize", n, DIM, derived.data()));
+  } else
+    PetscCall(WriteRowsCollective(sim.comm, gid, "halfsize", n, DIM, P.lp));
   PetscCall(WriteRowsCollective(sim.comm, gid, "mass", n, 1, P.mass));
   PetscCall(WriteRowsCollective(sim.comm, gid, "eps_p", n, 1, P.eps_p));
   PetscCall(WriteRowsCollective(sim.comm, gid, "colour", n, 1, P.colour));

@@ -34,8 +34,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscCall(PetscOptionsReal("-cell_size", "Cell size h (m), > 0", nullptr, s.h, &s.h, nullptr));
   PetscCall(PetscOptionsInt("-ppc", "Particles per cell per direction, 1..8", nullptr, s.ppc,
                             &s.ppc, nullptr));
-  PetscCall(PetscOptionsEnum("-shape", "Shape functions: mpm (linear) or pmpm (uGIMP)", nullptr,
-                             ShapeKindNames, (PetscEnum)s.shape, (PetscEnum *)&s.shape, nullptr));
+  PetscCall(PetscOptionsEnum("-shape",
+                             "Shape functions: mpm (linear), pmpm (uGIMP: blocks of fixed size) or "
+                             "cpgimp (blocks stretched "
+                             "with F's diagonal, up to one cell in half-size)",
+                             nullptr, ShapeKindNames, (PetscEnum)s.shape, (PetscEnum *)&s.shape,
+                             nullptr));
   PetscCall(PetscOptionsReal("-cfl", "Time-step factor on h / max(c + |v|), 0 < F <= 1", nullptr,
                              s.cfl, &s.cfl, nullptr));
   PetscCall(

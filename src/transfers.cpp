@@ -1,5 +1,6 @@
 #include "pmpm/transfers.hpp"
 #include "pmpm/affine.hpp"
+#include "pmpm/shape_cpgimp.hpp"
 #include <algorithm>
 #include <cmath>
 
@@ -42,10 +43,9 @@ inline void stencil(const GridView &G, const double *x, const double *l, Stencil
     affine1d<Shape>(xi[1], base[1], S.wy, S.dwy, G.h, S.ry, S.ay);
   }
   S.nx = S.ny = NS;
-  if (NS == 3) { // a uGIMP block inside one cell touches two nodes only
-    if (S.wx[NS - 1] == 0.0 && S.dwx[NS - 1] == 0.0) S.nx = 2;
-    if (S.wy[NS - 1] == 0.0 && S.dwy[NS - 1] == 0.0) S.ny = 2;
-  }
+  // a block inside one cell touches two nodes only (uGIMP, cpGIMP); a small cpGIMP block three
+  while (S.nx > 2 && S.wx[S.nx - 1] == 0.0 && S.dwx[S.nx - 1] == 0.0) --S.nx;
+  while (S.ny > 2 && S.wy[S.ny - 1] == 0.0 && S.dwy[S.ny - 1] == 0.0) --S.ny;
   for (int a = 0; a < NS; ++a) {
     S.dwx[a] *= invh;
     S.dwy[a] *= invh;
@@ -68,7 +68,9 @@ void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const 
   const PetscInt n = idx ? nidx : P.n;
   for (PetscInt k = 0; k < n; ++k) {
     const PetscInt p = idx ? idx[k] : k;
-    stencil<Shape, Affine>(G, P.x + p * DIM, P.lp + p * DIM, S);
+    double lb[DIM];
+    stencil<Shape, Affine>(G, P.x + p * DIM, Shape::half(P.lp + p * DIM, P.F + p * DIM * DIM, lb),
+                           S);
     if (bodies) S.node0 += P.body[p] * GridDof::NDOF;
     const double m = P.mass[p], V = P.vol[p];
     const double mv0 = m * P.v[p * DIM], mv1 = m * P.v[p * DIM + 1];
@@ -119,16 +121,21 @@ void p2g(const ParticleView &P, const Load &load, const GridView &G, const Petsc
     p2g_impl<Shape, false, false>(P, load, G, idx, nidx);
 }
 
+template <class Shape>
 void p2g_traction(const ParticleView &P, const std::vector<ParticleLoad> &loads,
                   const std::vector<PetscInt> &idx, double factor, const GridView &G) {
   Weights<LinearShape> W;
   const double zero[DIM] = {0.0, 0.0};
   for (const PetscInt p : idx) {
-    // The face sits at the undeformed offset: PMPM blocks keep their initial size, so this is
-    // the face the body's weights see (consistent with eq. 14).
+    // The face sits where the shape's block ends: at the undeformed offset for PMPM, whose
+    // blocks keep their initial size (consistent with eq. 14), scaled with the block for cpGIMP
+    // (l / lp is exactly 1 for a block of fixed size).
     const ParticleLoad &L = loads[P.load[p]];
+    double lb[DIM];
+    const double *lp = P.lp + p * DIM, *l = Shape::half(lp, P.F + p * DIM * DIM, lb);
     const double *o = L.tface;
-    const double xf[DIM] = {P.x[p * DIM] + o[0], P.x[p * DIM + 1] + o[1]};
+    const double xf[DIM] = {P.x[p * DIM] + o[0] * (l[0] / lp[0]),
+                            P.x[p * DIM + 1] + o[1] * (l[1] / lp[1])};
     weights<LinearShape>(xf, zero, G.origin, G.h, W);
     const double t[DIM] = {factor * L.traction[0], factor * L.traction[1]};
     const int off = G.nbody > 1 ? P.body[p] * GridDof::NDOF : 0;
@@ -154,7 +161,9 @@ void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt ni
   Weights<Shape> W;
   for (PetscInt k = 0; k < nidx; ++k) {
     const PetscInt p = idx[k];
-    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, G.origin, G.h, W);
+    double lb[DIM];
+    weights<Shape>(P.x + p * DIM, Shape::half(P.lp + p * DIM, P.F + p * DIM * DIM, lb), G.origin,
+                   G.h, W);
     const double vc = P.vol[p] * P.colour[p] / G.h; // per h: a jump of 1 in colour gives O(1)
     for (int b = 0; b < NS; ++b)
       for (int a = 0; a < NS; ++a) {
@@ -317,7 +326,8 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
   for (PetscInt p = 0; p < P.n; ++p) {
     double *x = P.x + p * DIM, *v = P.v + p * DIM;
     const GridView &G = (G1 && P.colour[p] > 0.5) ? *G1 : G0; // interface body field
-    stencil<Shape, Affine && vel>(G, x, P.lp + p * DIM, S);
+    double lb[DIM];
+    stencil<Shape, Affine && vel>(G, x, Shape::half(P.lp + p * DIM, P.F + p * DIM * DIM, lb), S);
     if (bodies) S.node0 += P.body[p] * GridDof::NDOF;
     double vg0 = 0, vg1 = 0, ag0 = 0, ag1 = 0, L0 = 0, L1 = 0, L2 = 0, L3 = 0;
     double Bn[DIM * DIM] = {0, 0, 0, 0};
@@ -455,7 +465,9 @@ template <class Shape> void p2g_momentum(const ParticleView &P, const GridView &
   constexpr int NS = Shape::NS;
   Weights<Shape> W;
   for (PetscInt p = 0; p < P.n; ++p) {
-    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, G.origin, G.h, W);
+    double lb[DIM];
+    weights<Shape>(P.x + p * DIM, Shape::half(P.lp + p * DIM, P.F + p * DIM * DIM, lb), G.origin,
+                   G.h, W);
     const double m = P.mass[p], *v = P.v + p * DIM;
     for (int b = 0; b < NS; ++b)
       for (int a = 0; a < NS; ++a) {
@@ -487,6 +499,8 @@ void grid_velocity(const GridView &G, const FaceBC face[2 * DIM],
 }
 
 #define PMPM_INSTANTIATE(S)                                                                        \
+  template void p2g_traction<S>(const ParticleView &, const std::vector<ParticleLoad> &,           \
+                                const std::vector<PetscInt> &, double, const GridView &);          \
   template void p2g<S>(const ParticleView &, const Load &, const GridView &, const PetscInt *,     \
                        PetscInt);                                                                  \
   template void p2g_colour_gradient<S>(const ParticleView &, const PetscInt *, PetscInt,           \
@@ -501,6 +515,7 @@ void grid_velocity(const GridView &G, const FaceBC face[2 * DIM],
                                   G2PStats &);
 PMPM_INSTANTIATE(LinearShape)
 PMPM_INSTANTIATE(UGIMPShape)
+PMPM_INSTANTIATE(CPGIMPShape)
 #undef PMPM_INSTANTIATE
 
 } // namespace pmpm

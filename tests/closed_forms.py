@@ -19,7 +19,7 @@ from scipy.optimize import brentq
 __all__ = ["catenary", "pullout", "terzaghi_arching", "terzaghi_arching_ktan",
            "arching_pressure_paper", "giroud_omega", "giroud_strain", "giroud_paper_form",
            "giroud_self_consistent", "veneer_infinite", "koerner_soong", "koerner_soong_fs",
-           "uniaxial_strain_shrinkage"]
+           "uniaxial_strain_shrinkage", "neo_hookean_bar"]
 
 
 def _positive(name, v):
@@ -337,6 +337,35 @@ def uniaxial_strain_shrinkage(e, H, nu, isotropic=True):
 
 
 # ------------------------------------------------------------------------------------------------
+# The bar (REFERENCE.md 2.1) at large stretch: compressible neo-Hookean (elastic.hpp,
+# sigma = (mu (B - I) + lambda ln J I) / J), plane strain, dead load t per reference area on the
+# end, free top: a homogeneous state F = diag(l1, l2, 1) with
+#   sigma_yy = 0:           mu (l2^2 - 1) + lambda ln(l1 l2) = 0,
+#   sigma_xx l2 = t:        (mu (l1^2 - 1) + lambda ln(l1 l2)) / l1 = t.
+def neo_hookean_bar(t, E, nu):
+    """Stretches (l1 along the bar, l2 across) and Cauchy sigma_xx = t / l2 of the plane-strain
+    neo-Hookean bar under a dead end load t (Pa per reference area, tension > 0)."""
+    _positive("E", E)
+    if not -1.0 < nu < 0.5:
+        raise ValueError(f"nu = {nu} outside (-1, 0.5)")
+    mu, lam = E / (2 * (1 + nu)), E * nu / ((1 + nu) * (1 - 2 * nu))
+
+    def l2_of(l1):  # sigma_yy = 0 for l2; mu l2^2 + lambda ln l2 increases with l2
+        return brentq(lambda l2: mu * (l2 * l2 - 1) + lam * math.log(l1 * l2), 1e-6, 10.0,
+                      xtol=1e-15, rtol=1e-15)
+
+    def nominal(l1):
+        return mu * (l1 * l1 - 1) / l1 - mu * (l2_of(l1) ** 2 - 1) / l1 - t
+
+    hi = 1.0 + 1e-12
+    while nominal(hi) * nominal(1.0) > 0:  # t >= 0 or < 0: bracket the stretch
+        hi = hi * 2 if t > 0 else hi / 2
+    l1 = brentq(nominal, min(1.0, hi), max(1.0, hi), xtol=1e-15, rtol=1e-15)
+    l2 = l2_of(l1)
+    return {"l1": l1, "l2": l2, "sigma_xx": t / l2}
+
+
+# ------------------------------------------------------------------------------------------------
 def _self_check():
     def close(name, got, want, tol):
         ok = abs(got - want) <= tol
@@ -411,6 +440,18 @@ def _self_check():
           0.02 * 1.25 / 0.75, 1e-15)
     close("vertical e = 1 %, H = 2 m (m)", uniaxial_strain_shrinkage(0.01, 2.0, 0.25, False),
           0.02, 0.0)
+    print("neo-Hookean bar (plane strain, dead load), E = 1e7, nu = 0.3")
+    mu, lam = 1e7 / 2.6, 1e7 * 0.3 / (1.3 * 0.4)
+    for t in (4.63e6, -2e6):
+        b = neo_hookean_bar(t, 1e7, 0.3)
+        l1, l2 = b["l1"], b["l2"]
+        close(f"t = {t:g}: sigma_yy (Pa)", mu * (l2 * l2 - 1) + lam * math.log(l1 * l2), 0.0, 1e-6)
+        close(f"t = {t:g}: sigma_xx l2 - t (Pa)",
+              (mu * (l1 * l1 - 1) + lam * math.log(l1 * l2)) / (l1 * l2) * l2 - t, 0.0, 1e-6)
+    close("t = 4.63e6: stretch l1 (past 60 %)", neo_hookean_bar(4.63e6, 1e7, 0.3)["l1"], 1.6006,
+          5e-5)
+    small = neo_hookean_bar(1e2, 1e7, 0.3)  # small-strain limit: u_x = t (1 - nu^2) x / E
+    close("t -> 0: (l1 - 1) E / (t (1 - nu^2))", (small["l1"] - 1) * 1e7 / (1e2 * 0.91), 1.0, 1e-4)
     print("closed_forms self-check: all passed")
 
 

@@ -101,6 +101,8 @@ cases = [
                                      "newton"], "does not support membrane chains"),
     ("Newton with a frictional interface", ["-options_file", "options/incline.opts", "-solver",
                                             "newton"], "-interface_type contact"),
+    ("Newton with cpGIMP", ["-options_file", "options/bar.opts", "-solver", "newton", "-shape",
+                            "cpgimp"], "-shape cpgimp"),
     ("Newton with stages", ["-options_file", "options/footing.opts", "-solver", "newton"],
      "does not support stages"),
     ("Newton with a plastic material", ["-options_file", "options/column.opts", "-solver",

@@ -26,6 +26,7 @@
 // fields, unless it is listed in AffineIsGradient.
 #pragma once
 #include "pmpm/shape.hpp"
+#include "pmpm/shape_cpgimp.hpp"
 #include <type_traits>
 
 namespace pmpm {
@@ -73,12 +74,17 @@ inline void affine_inertia(const double *x, const double *l, const double origin
     D[d] = s2 * h * h;
   }
 }
-inline void affine_inertia(ShapeKind shape, const double *x, const double *l,
+// The same for the run's shape, from the particle's initial half-size lp and its deformation
+// gradient F (the shape's half(): cpGIMP's block follows F).
+inline void affine_inertia(ShapeKind shape, const double *x, const double *lp, const double *F,
                            const double origin[DIM], double h, double D[DIM]) {
+  double lb[DIM];
   if (shape == ShapeKind::Linear)
-    affine_inertia<LinearShape>(x, l, origin, h, D);
+    affine_inertia<LinearShape>(x, lp, origin, h, D);
+  else if (shape == ShapeKind::CPGIMP)
+    affine_inertia<CPGIMPShape>(x, CPGIMPShape::half(lp, F, lb), origin, h, D);
   else
-    affine_inertia<UGIMPShape>(x, l, origin, h, D);
+    affine_inertia<UGIMPShape>(x, lp, origin, h, D);
 }
 
 // The particle's spin angular momentum (about its own centre), m_p eps : B_p = m (B_yx - B_xy).

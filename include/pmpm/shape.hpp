@@ -4,25 +4,30 @@
 //   static constexpr int NS;      // nodes per direction in the support
 //   static constexpr const char *name;
 //   static void eval1d(double xi, double li, int &base, double w[NS], double dw[NS]);
+//   static const double *half(const double *lp, const double *F, double *buf);
 // where xi = (x - origin)/h is the particle position in cell units, li = l/h its half-size in
 // cell units, base the first node index of the support, w the weights and dw their derivatives
-// with respect to xi (divide by h for physical gradients). Tensor products build the DIM-D
-// weights (weights() below). A new shape (quadratic B-spline, cpGIMP with a deforming half-size)
-// is one new struct in one new header, plus one line in the dispatch of cycle.cpp. A shape that is
-// not a tensor product (CPDI) provides its own weights() with the same output layout.
+// with respect to xi (divide by h for physical gradients). half() gives the particle's current
+// half-size from its initial one lp and its deformation gradient F: lp itself for a block of
+// fixed size, a deformed size written to buf (DIM values) for cpGIMP. Tensor products build the
+// DIM-D weights (weights() below). A new shape (quadratic B-spline, cpGIMP with a deforming
+// half-size) is one new struct in one new header, plus one line in the dispatch of cycle.cpp. A
+// shape that is not a tensor product (CPDI) provides its own weights() with the same output layout.
 #pragma once
 #include "pmpm/config.hpp"
 #include <cmath>
 
 namespace pmpm {
 
-enum class ShapeKind { Linear = 0, UGIMP = 1 };
-inline constexpr const char *ShapeKindNames[] = {"mpm", "pmpm", "ShapeKind", "SHAPE_", nullptr};
+enum class ShapeKind { Linear = 0, UGIMP = 1, CPGIMP = 2 };
+inline constexpr const char *ShapeKindNames[] = {"mpm",       "pmpm",   "cpgimp",
+                                                 "ShapeKind", "SHAPE_", nullptr};
 
 // Standard MPM: piecewise-linear hat of the node, evaluated at the particle centre.
 struct LinearShape {
   static constexpr int NS = 2;
   static constexpr const char *name = "mpm";
+  static const double *half(const double *lp, const double *, double *) { return lp; }
   static void eval1d(double xi, double /*li*/, int &base, double w[NS], double dw[NS]) {
     base = static_cast<int>(std::floor(xi));
     const double r = xi - base;
@@ -40,6 +45,7 @@ struct LinearShape {
 struct UGIMPShape {
   static constexpr int NS = 3;
   static constexpr const char *name = "pmpm";
+  static const double *half(const double *lp, const double *, double *) { return lp; }
   // Closed form: with the block [a, b] in the coordinates of its first cell (0 <= a < 1,
   // b = a + 2 li <= a + 1), integrate the three hats piecewise; one branch (b > 1).
   static void eval1d(double xi, double li, int &base, double w[NS], double dw[NS]) {

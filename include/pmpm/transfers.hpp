@@ -41,8 +41,10 @@ void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt ni
 // slots of the cell's lower-left node. interface.hpp's cell_colour_normals finishes them.
 void p2g_cell_colour(const ParticleView &P, const GridView &G);
 
-// Surface tractions act at the particle's face point x + tface; linear hats there give the
-// consistent nodal load of a traction on the body's face. idx lists the loaded particles.
+// Surface tractions act at the particle's face point x + tface (tface scaled with the Shape's
+// block when it deforms); linear hats there give the consistent nodal load of a traction on the
+// body's face. idx lists the loaded particles.
+template <class Shape>
 void p2g_traction(const ParticleView &P, const std::vector<ParticleLoad> &loads,
                   const std::vector<PetscInt> &idx, double factor, const GridView &G);
 

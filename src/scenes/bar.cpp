@@ -104,7 +104,9 @@ public:
     for (PetscInt p = 0; p < P.n; ++p) {
       double *v = P.v + p * DIM;
       double D[DIM] = {0, 0}, *B = P.B ? P.B + p * DIM * DIM : nullptr;
-      if (B) affine_inertia(sim.set.shape, P.x + p * DIM, P.lp + p * DIM, sim.origin, sim.set.h, D);
+      if (B)
+        affine_inertia(sim.set.shape, P.x + p * DIM, P.lp + p * DIM, P.F + p * DIM * DIM,
+                       sim.origin, sim.set.h, D);
       if (sim.run.step == 0) {
         v[0] = v0_ * std::sin(beta() * P.x0[p * DIM]);
         if (B) B[0] = v0_ * beta() * std::cos(beta() * P.x0[p * DIM]) * D[0]; // C D, C = dv/dx

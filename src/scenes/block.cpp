@@ -214,7 +214,8 @@ public:
         P.v[p * DIM + 1] = v0_[1] + omega_ * (x[0] - xc_[0]);
         if (P.B) { // B = C D for the rigid rotation's gradient C
           double D[DIM], *B = P.B + p * DIM * DIM;
-          affine_inertia(sim.set.shape, x, P.lp + p * DIM, sim.origin, sim.set.h, D);
+          affine_inertia(sim.set.shape, x, P.lp + p * DIM, P.F + p * DIM * DIM, sim.origin,
+                         sim.set.h, D);
           B[0] = B[3] = 0;
           B[1] = -omega_ * D[1];
           B[2] = omega_ * D[0];

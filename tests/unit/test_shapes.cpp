@@ -1,12 +1,16 @@
 // Unit tests of the shape functions (shape.hpp): LinearShape (standard MPM) and UGIMPShape
 // (the paper's PMPM, eq. 14-15, 20), through the 2D tensor-product weights() that every kernel
-// uses. Properties checked at many random particles (fixed seed):
+// uses, and CPGIMPShape (shape_cpgimp.hpp: uGIMP's block with a half-size up to one cell).
+// Properties checked at many random particles (fixed seed):
 //   partition of unity, zero gradient sum, linear completeness of weights and gradients,
 //   PMPM == linear for a block inside one cell, the PMPM weight as a block average of the 2D hat
 //   (numerical quadrature) and its gradient (finite differences), and continuity of the PMPM
-//   weights and gradients as a block crosses a cell face (where the linear gradient jumps).
+//   weights and gradients as a block crosses a cell face (where the linear gradient jumps);
+//   cpGIMP: the same properties for blocks up to one cell, cpGIMP == uGIMP for blocks up to half
+//   a cell (F = I), and its half-size from F.
 #include "check.hpp"
 #include "pmpm/shape.hpp"
+#include "pmpm/shape_cpgimp.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +23,7 @@ namespace {
 // The sequence these tests were written with (pmpm_test::Lcg).
 struct Lcg : pmpm_test::Lcg {
   Lcg() : pmpm_test::Lcg(0x2545F4914F6CDD1Dull) {}
+  explicit Lcg(std::uint64_t seed) : pmpm_test::Lcg(seed) {}
 };
 
 // A grid that is not aligned with 0 and a cell size that is not a power of two, so that the
@@ -48,9 +53,10 @@ void at_node(const Weights<Shape> &W, int i, int j, double &w, double g[DIM]) {
   g[1] = W.grad[k][1];
 }
 
-void random_particle(Lcg &r, double x[DIM], double l[DIM]) {
+// lmax: the largest half-size drawn, in cells (uGIMP 0.5; cpGIMP up to 1).
+void random_particle(Lcg &r, double x[DIM], double l[DIM], double lmax = 0.5) {
   for (int d = 0; d < DIM; ++d) {
-    const double li = r.uniform(LMIN, 0.5);
+    const double li = r.uniform(LMIN, lmax);
     double xi = r.uniform(2.0, 12.0);
     // Now and then put a block edge just past a cell face (by 1e-7 to 1e-1 cells): that is where
     // uGIMP's first support node changes, and where an off-by-one support loses a small weight.
@@ -61,17 +67,17 @@ void random_particle(Lcg &r, double x[DIM], double l[DIM]) {
     x[d] = ORIGIN[d] + xi * H;
     l[d] = li * H;
   }
-  // Hit the largest admissible block (l = h/2) exactly now and then.
-  if (r.next() < 0.1) l[0] = 0.5 * H;
-  if (r.next() < 0.1) l[1] = 0.5 * H;
+  // Hit the largest admissible block (l = lmax h) exactly now and then.
+  if (r.next() < 0.1) l[0] = lmax * H;
+  if (r.next() < 0.1) l[1] = lmax * H;
 }
 
 // Partition of unity, zero gradient sum and linear completeness.
-template <class Shape> void test_basic_properties(Lcg &r) {
+template <class Shape> void test_basic_properties(Lcg &r, double lmax = 0.5) {
   Weights<Shape> W;
   for (int n = 0; n < NSAMPLE; ++n) {
     double x[DIM], l[DIM];
-    random_particle(r, x, l);
+    random_particle(r, x, l, lmax);
     weights<Shape>(x, l, ORIGIN, H, W);
     double sw = 0, sg[DIM] = {0, 0}, swx[DIM] = {0, 0}, sgx[DIM][DIM] = {{0, 0}, {0, 0}};
     bool nonneg = true;
@@ -84,7 +90,7 @@ template <class Shape> void test_basic_properties(Lcg &r) {
         for (int e = 0; e < DIM; ++e) sgx[d][e] += W.grad[k][e] * node_x(W, k, d);
       }
     }
-    // Nine O(1) products summed: round-off a few 1e-16.
+    // Nine (cpGIMP: sixteen) O(1) products summed: round-off a few 1e-16.
     CHECK_CLOSE(sw, 1.0, 1e-14);
     CHECK(nonneg);
     // Gradients are O(1/h) (uGIMP: up to 1/h): their sum has round-off ~ 1e-15/h.
@@ -156,23 +162,25 @@ double hat_average(int i, double x, double l, int d, int nq) {
 // of the average is <= (4/h) q^2 / 8 / (2 l) = l / (h n^2). For the product of two averages (both
 // <= 1) the errors add: (l_x + l_y) / (h n^2) <= 2.5e-7 for n = 2000 and l <= h/2. A wrong weight
 // formula errs by O(1e-2) or more.
-void test_pmpm_weight_is_block_average(Lcg &r) {
-  const int NQ = 2000, NP = 200;
-  Weights<UGIMPShape> W;
+//
+// cpGIMP (lmax = 1): the same bound, (l_x + l_y) / (h n^2) <= 5e-7.
+template <class Shape> void test_pmpm_weight_is_block_average(Lcg &r, double lmax = 0.5) {
+  const int NQ = 2000, NP = 200, NA = Shape::NS + 2;
+  Weights<Shape> W;
   for (int n = 0; n < NP; ++n) {
     double x[DIM], l[DIM];
-    random_particle(r, x, l);
-    weights<UGIMPShape>(x, l, ORIGIN, H, W);
+    random_particle(r, x, l, lmax);
+    weights<Shape>(x, l, ORIGIN, H, W);
     const double tol = (l[0] + l[1]) / (H * NQ * double(NQ)) + 1e-14;
-    double ax[5], ay[5];
-    for (int a = 0; a < 5; ++a) {
+    double ax[NA], ay[NA];
+    for (int a = 0; a < NA; ++a) {
       ax[a] = hat_average(W.base[0] - 1 + a, x[0], l[0], 0, NQ);
       ay[a] = hat_average(W.base[1] - 1 + a, x[1], l[1], 1, NQ);
     }
     double maxerr = 0.0, maxw = 0.0;
     // nodes one beyond the support too: the block average must vanish there as well
-    for (int b = 0; b < 5; ++b)
-      for (int a = 0; a < 5; ++a) {
+    for (int b = 0; b < NA; ++b)
+      for (int a = 0; a < NA; ++a) {
         double w, g[DIM];
         at_node(W, W.base[0] - 1 + a, W.base[1] - 1 + b, w, g);
         maxerr = std::max(maxerr, std::fabs(w - ax[a] * ay[b]));
@@ -190,24 +198,25 @@ void test_pmpm_weight_is_block_average(Lcg &r) {
 // is exact for quadratics; a jump J of the second derivative within +-delta errs by <= J delta/4.
 // The jumps of S'' = (hat'(s + l) - hat'(s - l)) / 2l add up to <= 8 / 2l = 4/l, so the
 // truncation error is <= delta / l (cell units). Round-off: ~ 2 eps / (2 delta). In physical units
-// both are divided by h. With delta = 1e-7 cells: <= 2e-6 / h + 1e-9 / h.
-void test_pmpm_gradient_is_derivative(Lcg &r) {
+// both are divided by h. With delta = 1e-7 cells: <= 2e-6 / h + 1e-9 / h. cpGIMP's weight is the
+// same block average (any l), so the same bound holds for its blocks up to one cell.
+template <class Shape> void test_pmpm_gradient_is_derivative(Lcg &r, double lmax = 0.5) {
   const double delta = 1e-7; // cell units
-  Weights<UGIMPShape> W, Wp, Wm;
+  Weights<Shape> W, Wp, Wm;
   for (int n = 0; n < NSAMPLE; ++n) {
     double x[DIM], l[DIM];
-    random_particle(r, x, l);
-    weights<UGIMPShape>(x, l, ORIGIN, H, W);
+    random_particle(r, x, l, lmax);
+    weights<Shape>(x, l, ORIGIN, H, W);
     for (int e = 0; e < DIM; ++e) {
       double xp[DIM] = {x[0], x[1]}, xm[DIM] = {x[0], x[1]};
       xp[e] += delta * H;
       xm[e] -= delta * H;
-      weights<UGIMPShape>(xp, l, ORIGIN, H, Wp);
-      weights<UGIMPShape>(xm, l, ORIGIN, H, Wm);
+      weights<Shape>(xp, l, ORIGIN, H, Wp);
+      weights<Shape>(xm, l, ORIGIN, H, Wm);
       const double tol = (delta / (l[e] / H) + 1e-9) / H;
       double maxerr = 0.0;
-      for (int j = W.base[1] - 1; j <= W.base[1] + 3; ++j)
-        for (int i = W.base[0] - 1; i <= W.base[0] + 3; ++i) {
+      for (int j = W.base[1] - 1; j <= W.base[1] + Shape::NS; ++j)
+        for (int i = W.base[0] - 1; i <= W.base[0] + Shape::NS; ++i) {
           double w, g[DIM], wp, gp[DIM], wm, gm[DIM];
           at_node(W, i, j, w, g);
           at_node(Wp, i, j, wp, gp);
@@ -276,6 +285,99 @@ void test_face_crossing(Lcg &r) {
   }
 }
 
+// cpGIMP with F = I is uGIMP: for blocks up to half a cell (uGIMP's range) every node's weight and
+// gradient agree, compared by global node index (cpGIMP's fourth node must be 0). Both are
+// differences of hat integrals over 2 l: round-off ~ eps / l <= 5e-15 for l >= LMIN.
+void test_cpgimp_equals_ugimp(Lcg &r) {
+  Weights<UGIMPShape> WU;
+  Weights<CPGIMPShape> WC;
+  const double F[DIM * DIM] = {1.0, 0.0, 0.0, 1.0};
+  for (int n = 0; n < NSAMPLE; ++n) {
+    double x[DIM], l[DIM], lb[DIM];
+    random_particle(r, x, l);
+    const double *lc = CPGIMPShape::half(l, F, lb);
+    CHECK(lc[0] == l[0] && lc[1] == l[1]); // F = I: the initial half-size exactly
+    weights<UGIMPShape>(x, l, ORIGIN, H, WU);
+    weights<CPGIMPShape>(x, lc, ORIGIN, H, WC);
+    CHECK(WU.base[0] == WC.base[0] && WU.base[1] == WC.base[1]);
+    double maxdw = 0, maxdg = 0;
+    for (int j = WC.base[1] - 1; j <= WC.base[1] + 4; ++j)
+      for (int i = WC.base[0] - 1; i <= WC.base[0] + 4; ++i) {
+        double wu, gu[DIM], wc, gc[DIM];
+        at_node(WU, i, j, wu, gu);
+        at_node(WC, i, j, wc, gc);
+        maxdw = std::max(maxdw, std::fabs(wu - wc));
+        for (int d = 0; d < DIM; ++d) maxdg = std::max(maxdg, std::fabs(gu[d] - gc[d]));
+      }
+    CHECK_CLOSE(maxdw, 0.0, 1e-14);
+    CHECK_CLOSE(maxdg, 0.0, 1e-14 / H);
+  }
+}
+
+// The half-size follows V_dd, V = sqrt(F F^T), computed here independently from B's eigenpairs
+// (V_dd = sum_i sqrt(mu_i) (n_i . e_d)^2); a rigid rotation keeps the block (V = I), a stretch
+// then a quarter turn stretches the other axis, and a collapsed F is floored at kMinStretch.
+void test_cpgimp_half_size() {
+  const double lp[DIM] = {0.25 * H, 0.125 * H};
+  double lb[DIM];
+  {
+    const double F[DIM * DIM] = {1.7, 0.3, -0.2, 0.55}; // stretch x, compress y, some shear
+    const double B00 = F[0] * F[0] + F[1] * F[1], B11 = F[2] * F[2] + F[3] * F[3];
+    const double B01 = F[0] * F[2] + F[1] * F[3];
+    const double m = 0.5 * (B00 + B11), r = std::sqrt(0.25 * (B00 - B11) * (B00 - B11) + B01 * B01);
+    const double mu[2] = {m + r, m - r};
+    double V[DIM] = {0, 0};
+    for (int i = 0; i < 2; ++i) {
+      double n0 = B01, n1 = mu[i] - B00; // (B - mu I) n = 0
+      const double nn = std::hypot(n0, n1);
+      n0 /= nn;
+      n1 /= nn;
+      V[0] += std::sqrt(mu[i]) * n0 * n0;
+      V[1] += std::sqrt(mu[i]) * n1 * n1;
+    }
+    const double *l = CPGIMPShape::half(lp, F, lb);
+    // O(1) entries, a square root and a division each way: round-off a few 1e-16 relative
+    CHECK_CLOSE(l[0], V[0] * lp[0], 1e-14 * lp[0]);
+    CHECK_CLOSE(l[1], V[1] * lp[1], 1e-14 * lp[1]);
+  }
+  {
+    const double c = std::cos(0.7), s = std::sin(0.7);
+    const double R[DIM * DIM] = {c, -s, s, c}; // rigid rotation: the block is unchanged
+    const double *l = CPGIMPShape::half(lp, R, lb);
+    CHECK_CLOSE(l[0], lp[0], 1e-15 * lp[0]);
+    CHECK_CLOSE(l[1], lp[1], 1e-15 * lp[1]);
+    const double Q[DIM * DIM] = {0.0, -1.0, 1.5, 0.0}; // diag(1.5, 1) then a quarter turn
+    l = CPGIMPShape::half(lp, Q, lb);
+    CHECK_CLOSE(l[0], lp[0], 1e-15 * lp[0]);
+    CHECK_CLOSE(l[1], 1.5 * lp[1], 1e-15 * lp[1]);
+    const double D[DIM * DIM] = {1.7, 0.0, 0.0, 0.55}; // diagonal F: V = F
+    l = CPGIMPShape::half(lp, D, lb);
+    CHECK_CLOSE(l[0], 1.7 * lp[0], 1e-15 * lp[0]);
+    CHECK_CLOSE(l[1], 0.55 * lp[1], 1e-15 * lp[1]);
+    const double Z[DIM * DIM] = {0.0, 0.0, 0.0, 0.0}; // collapsed
+    l = CPGIMPShape::half(lp, Z, lb);
+    CHECK(l[0] == CPGIMPShape::kMinStretch * lp[0] && l[1] == CPGIMPShape::kMinStretch * lp[1]);
+  }
+  // the largest block, l = h, centred at xi = 5.5: spans [4.5, 6.5], nodes 4..7, all non-zero
+  int base;
+  double w[CPGIMPShape::NS], dw[CPGIMPShape::NS];
+  CPGIMPShape::eval1d(5.5, CPGIMPShape::kMaxHalf, base, w, dw);
+  CHECK(base == 4);
+  // exact: block averages over [0.5, 2.5] of the hats at 0..3: 1/16, 7/16, 7/16, 1/16
+  CHECK_CLOSE(w[0], 1.0 / 16, 1e-15);
+  CHECK_CLOSE(w[1], 7.0 / 16, 1e-15);
+  CHECK_CLOSE(w[2], 7.0 / 16, 1e-15);
+  CHECK_CLOSE(w[3], 1.0 / 16, 1e-15);
+  // derivative (N_k(2.5) - N_k(0.5)) / 2: -1/4, -1/4, 1/4, 1/4
+  CHECK_CLOSE(dw[0], -0.25, 1e-15);
+  CHECK_CLOSE(dw[1], -0.25, 1e-15);
+  CHECK_CLOSE(dw[2], 0.25, 1e-15);
+  CHECK_CLOSE(dw[3], 0.25, 1e-15);
+  // a small block inside one cell: two nodes, the other two exactly zero (the transfers skip them)
+  CPGIMPShape::eval1d(5.5, 0.2, base, w, dw);
+  CHECK(base == 5 && w[2] == 0.0 && dw[2] == 0.0 && w[3] == 0.0 && dw[3] == 0.0);
+}
+
 } // namespace
 
 int main() {
@@ -283,8 +385,15 @@ int main() {
   test_basic_properties<LinearShape>(r);
   test_basic_properties<UGIMPShape>(r);
   test_pmpm_equals_linear_inside_cell(r);
-  test_pmpm_weight_is_block_average(r);
-  test_pmpm_gradient_is_derivative(r);
+  test_pmpm_weight_is_block_average<UGIMPShape>(r);
+  test_pmpm_gradient_is_derivative<UGIMPShape>(r);
   test_face_crossing(r);
+  // cpGIMP, a sequence of its own (the tests above keep theirs)
+  Lcg c(0x9E3779B97F4A7C15ull);
+  test_basic_properties<CPGIMPShape>(c, CPGIMPShape::kMaxHalf);
+  test_pmpm_weight_is_block_average<CPGIMPShape>(c, CPGIMPShape::kMaxHalf);
+  test_pmpm_gradient_is_derivative<CPGIMPShape>(c, CPGIMPShape::kMaxHalf);
+  test_cpgimp_equals_ugimp(c);
+  test_cpgimp_half_size();
   return pmpm_test::report("test_shapes");
 }
