@@ -15,12 +15,12 @@ constexpr double kGiB = 1073741824.0;
 // local-to-global map and scatter indices
 constexpr double kGridBytesPerNode = 2 * DIM * 8 + 16;
 // per particle: pmpm's swarm fields (particles.cpp: 22 doubles and 4 PetscInt) and DMSwarm's own
-// (coordinates' id, rank, cell: 16 B), 208 B; and the setup's transient, the generated list
-// (sizeof(ParticleInit)) while the swarm grows, with the swarm's reallocation slack (16 B): the
-// run's scratch (velocity gradient 4 doubles, material index) comes after the list is gone and
-// is smaller. Measured: 340 B per particle marginal peak on the column at 1-4 M particles
-// (BENCHMARKS.md, memory per particle). -transfer apic adds B (4 doubles).
-constexpr double kParticleBytes = 22 * 8 + 4 * sizeof(PetscInt) + 16 + sizeof(ParticleInit) + 16;
+// (coordinates' id, rank, cell: 16 B), 208 B; and the setup's transient at its peak, the rest of
+// the generated list and the swarm's reallocation copies while it grows (96 B, measured: the
+// column's 340 B marginal peak at 1-4 M particles less its 41 B of grid and the swarm). The run's
+// scratch (velocity gradient, material index: 36 B) comes after and is smaller. The estimate
+// is 4-9 % above the measured peaks (BENCHMARKS.md, memory per particle). -transfer apic adds B.
+constexpr double kParticleBytes = 22 * 8 + 4 * sizeof(PetscInt) + 16 + 96;
 
 // per rank: the libraries, MPI's buffers and PETSc's objects (the resident size of a 1-rank run
 // of options/bar.opts, 47 MB)

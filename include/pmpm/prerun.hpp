@@ -18,7 +18,7 @@ PetscErrorCode CheckOutputDir(MPI_Comm comm, const std::string &dir);
 //              the coordinates and PETSc's index maps (kGridBytesPerNode), plus the interface
 //              grid's two vectors when an interface is on;
 //   particles: count x kParticleBytes (the swarm's fields, DMSwarm's own, and the setup's
-//              generated list while the swarm grows; the run's scratch is smaller).
+//              transient while the swarm grows; the run's scratch is smaller).
 // Compared per node (ranks sharing memory, MPI_COMM_TYPE_SHARED) with -memory_limit, by default
 // the node's MemAvailable (/proc/meminfo), or its cgroup's remaining limit if lower.
 struct MemoryCheck {
