@@ -1,9 +1,14 @@
 """What the studies in bench/ share: the environment they launch pmpm under, and BENCHMARKS.md,
 which several studies write, each owning a section between its own markers."""
+import json
 import os
+import shutil
+import subprocess
+import time
 from pathlib import Path
 
-BENCHMARKS = Path(__file__).resolve().parent.parent / "BENCHMARKS.md"
+ROOT = Path(__file__).resolve().parent.parent
+BENCHMARKS = ROOT / "BENCHMARKS.md"
 
 # mpiexec as root, and more ranks than cores (the 4-rank layouts on a 2-core machine)
 MPI_ENV = dict(os.environ, OMPI_MCA_rmaps_base_oversubscribe="1")
@@ -30,3 +35,23 @@ def publish(text, path, begin, end, update):
     print(text)
     if update:
         replace_section(text, begin, end)
+
+
+def run_pmpm(exe, np_, args, out, timeout=3600):
+    """Run pmpm from the repository root into `out` (emptied first); return its summary.json with
+    the launch's wall seconds as "elapsed", or None with the command and its output's tail printed."""
+    out = Path(out)
+    if out.is_dir():
+        shutil.rmtree(out)
+    cmd = ["mpiexec", "-n", str(np_), str(exe)] + [str(a) for a in args] + \
+          ["-output_dir", str(out), "-quiet"]
+    t0 = time.time()
+    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True, timeout=timeout)
+    if p.returncode != 0:
+        print(f"  failed: {' '.join(cmd)}\n{p.stdout[-2000:]}")
+        return None
+    with open(out / "summary.json") as f:
+        s = json.load(f)
+    s["elapsed"] = time.time() - t0
+    return s

@@ -15,14 +15,13 @@
    steps.
 """
 import argparse
-import json
 import os
 import shutil
 import subprocess
 import time
 from pathlib import Path
 
-from benchmarks_md import MPI_ENV, publish
+from benchmarks_md import publish, run_pmpm
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "bench" / "out" / "chains"
@@ -32,20 +31,7 @@ MARK_BEGIN, MARK_END = "<!-- chains.py begin -->", "<!-- chains.py end -->"
 
 def run(exe, np_, args, out, timeout=3600):
     """Run pmpm; return its summary (with wall time) or None with the error printed."""
-    if os.path.isdir(out):
-        shutil.rmtree(out)
-    cmd = ["mpiexec", "-n", str(np_), str(exe)] + [str(a) for a in args] + \
-          ["-output_dir", str(out), "-quiet"]
-    t0 = time.time()
-    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                       text=True, timeout=timeout)
-    if p.returncode != 0:
-        print(f"  failed: {' '.join(cmd)}\n{p.stdout[-2000:]}")
-        return None
-    with open(Path(out) / "summary.json") as f:
-        s = json.load(f)
-    s["elapsed"] = time.time() - t0
-    return s
+    return run_pmpm(exe, np_, args, out, timeout)
 
 
 def baseline_binary(rev):

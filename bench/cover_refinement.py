@@ -17,13 +17,9 @@ holds at a mesh when the change from it to the next finer one is within 5 %.
 """
 import argparse
 import csv
-import json
-import shutil
-import subprocess
-import time
 from pathlib import Path
 
-from benchmarks_md import MPI_ENV, publish
+from benchmarks_md import publish, run_pmpm
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "bench" / "out" / "cover_refinement"
@@ -39,19 +35,9 @@ EXAMPLES = {
 
 def run(np_, args, out, timeout=7200):
     """Run pmpm; return (summary, stage rows) or None with the error printed."""
-    if out.is_dir():
-        shutil.rmtree(out)
-    cmd = ["mpiexec", "-n", str(np_), str(ROOT / "build" / "pmpm")] + [str(a) for a in args] + \
-          ["-output_dir", str(out), "-quiet"]
-    t0 = time.time()
-    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                       text=True, timeout=timeout)
-    if p.returncode != 0:
-        print(f"  failed: {' '.join(cmd)}\n{p.stdout[-2000:]}")
+    s = run_pmpm(ROOT / "build" / "pmpm", np_, args, out, timeout)
+    if s is None:
         return None
-    with open(out / "summary.json") as f:
-        s = json.load(f)
-    s["elapsed"] = time.time() - t0
     with open(out / "stages.csv") as f:
         rows = list(csv.DictReader(f))
     return s, rows

@@ -17,14 +17,9 @@
 One rank each (the study is the method's cost, not its parallel speed-up).
 """
 import argparse
-import json
-import os
-import shutil
-import subprocess
-import time
 from pathlib import Path
 
-from benchmarks_md import MPI_ENV, publish
+from benchmarks_md import publish, run_pmpm
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "bench" / "out" / "newton"
@@ -34,20 +29,7 @@ MARK_BEGIN, MARK_END = "<!-- newton.py begin -->", "<!-- newton.py end -->"
 
 def run(args, out, np_=1, timeout=3600):
     """Run pmpm; return its summary (with the launch's elapsed seconds) or None."""
-    if os.path.isdir(out):
-        shutil.rmtree(out)
-    cmd = ["mpiexec", "-n", str(np_), str(EXE)] + [str(a) for a in args] + \
-          ["-output_dir", str(out), "-quiet"]
-    t0 = time.time()
-    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                       text=True, timeout=timeout)
-    if p.returncode != 0:
-        print(f"  failed: {' '.join(cmd)}\n{p.stdout[-2000:]}")
-        return None
-    with open(Path(out) / "summary.json") as f:
-        s = json.load(f)
-    s["elapsed"] = time.time() - t0
-    return s
+    return run_pmpm(EXE, np_, args, out, timeout)
 
 
 def work(s):
