@@ -6,6 +6,8 @@ usage: test_bad_input.py EXE OUTDIR
 """
 import os
 import sys
+from concurrent.futures import ThreadPoolExecutor
+
 from pmpmtest import Checks, run
 
 exe, out = sys.argv[1], sys.argv[2]
@@ -113,9 +115,19 @@ cases = [
     ("an option of another material model", ["-options_file", "options/bar.opts",
                                              "-mat_bar_cohesion", "5e3"], "-mat_bar_cohesion"),
 ]
-for what, args, needle in cases:
+# Each case is a short launch that stops at its check: four at a time (their MPI start-ups
+# overlap), the checks in the list's order.
+
+
+def launch(case):
+    what, args, _ = case
+    return run(exe, 1, args, f"{out}/{what.replace(' ', '_')}", expect_ok=False)
+
+
+with ThreadPoolExecutor(max_workers=4) as pool:
+    results = list(pool.map(launch, cases))
+for (what, args, needle), (code, text) in zip(cases, results):
     d = f"{out}/{what.replace(' ', '_')}"
-    code, text = run(exe, 1, args, d, expect_ok=False)
     msg = next((l for l in text.splitlines() if l.startswith("pmpm: error") and needle in l), "")
     c.check(f"{what}: non-zero exit", code != 0, f"(exit {code})")
     c.check(f"{what}: message names {needle}", bool(msg), f"[{msg.strip()[:110]}]")
