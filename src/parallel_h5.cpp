@@ -33,7 +33,9 @@ PetscErrorCode WriteRowsCollective(MPI_Comm comm, hid_t loc, const char *name, P
     err |= H5Sselect_none(space) < 0;
     err |= H5Sselect_none(mem) < 0;
   }
-  if (dset >= 0) err |= H5Dwrite(dset, H5T_NATIVE_DOUBLE, mem, space, dxpl, data) < 0;
+  // an empty dataset has no storage to write to (a scene of chains alone has no particles)
+  if (dset >= 0 && total > 0)
+    err |= H5Dwrite(dset, H5T_NATIVE_DOUBLE, mem, space, dxpl, data) < 0;
   if (dset >= 0) H5Dclose(dset);
   H5Pclose(dxpl);
   H5Pclose(dcpl);
