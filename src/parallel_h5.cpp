@@ -18,6 +18,11 @@ PetscErrorCode WriteRowsCollective(MPI_Comm comm, hid_t loc, const char *name, P
   const hsize_t count[2] = {static_cast<hsize_t>(n) * w, static_cast<hsize_t>(bs)};
   const hsize_t mdim = static_cast<hsize_t>(n) * bs;
 
+  // our one-line error below, not HDF5's error stack
+  H5E_auto2_t efn;
+  void *edata;
+  H5Eget_auto2(H5E_DEFAULT, &efn, &edata);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   herr_t err = 0;
   const hid_t space = H5Screate_simple(rank2, dims, nullptr);
   const hid_t mem = H5Screate_simple(1, &mdim, nullptr);
@@ -34,13 +39,13 @@ PetscErrorCode WriteRowsCollective(MPI_Comm comm, hid_t loc, const char *name, P
     err |= H5Sselect_none(mem) < 0;
   }
   // an empty dataset has no storage to write to (a scene of chains alone has no particles)
-  if (dset >= 0 && total > 0)
-    err |= H5Dwrite(dset, H5T_NATIVE_DOUBLE, mem, space, dxpl, data) < 0;
+  if (dset >= 0 && total > 0) err |= H5Dwrite(dset, H5T_NATIVE_DOUBLE, mem, space, dxpl, data) < 0;
   if (dset >= 0) H5Dclose(dset);
   H5Pclose(dxpl);
   H5Pclose(dcpl);
   H5Sclose(mem);
   H5Sclose(space);
+  H5Eset_auto2(H5E_DEFAULT, efn, edata);
   int bad = (err || space < 0 || mem < 0 || dset < 0) ? 1 : 0;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MAX, comm));
   PetscCheck(!bad, comm, PETSC_ERR_FILE_WRITE,
