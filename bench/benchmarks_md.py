@@ -37,9 +37,9 @@ def publish(text, path, begin, end, update):
         replace_section(text, begin, end)
 
 
-def run_pmpm(exe, np_, args, out, timeout=3600):
-    """Run pmpm from the repository root into `out` (emptied first); return its summary.json with
-    the launch's wall seconds as "elapsed", or None with the command and its output's tail printed."""
+def launch(exe, np_, args, out, timeout=3600):
+    """Run pmpm from the repository root into `out` (emptied first). Return (its summary.json with
+    the launch's wall seconds as "elapsed", the output) or (None, the output) if it failed."""
     out = Path(out)
     if out.is_dir():
         shutil.rmtree(out)
@@ -49,9 +49,21 @@ def run_pmpm(exe, np_, args, out, timeout=3600):
     p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True, timeout=timeout)
     if p.returncode != 0:
-        print(f"  failed: {' '.join(cmd)}\n{p.stdout[-2000:]}")
-        return None
+        return None, f"{' '.join(cmd)}\n{p.stdout}"
     with open(out / "summary.json") as f:
         s = json.load(f)
     s["elapsed"] = time.time() - t0
+    return s, p.stdout
+
+
+def error_line(output, tail=300):
+    """pmpm's one error line in a failed launch's output, or the output's tail."""
+    return next((ln for ln in output.splitlines() if ln.startswith("pmpm: error")), output[-tail:])
+
+
+def run_pmpm(exe, np_, args, out, timeout=3600):
+    """launch(), printing the command and its output's tail when it fails (then None)."""
+    s, output = launch(exe, np_, args, out, timeout)
+    if s is None:
+        print(f"  failed: {output[-2000:]}")
     return s

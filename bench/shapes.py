@@ -24,7 +24,6 @@ import argparse
 import json
 import os
 import resource
-import shutil
 import subprocess
 import sys
 import time
@@ -32,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-from benchmarks_md import MPI_ENV, publish
+from benchmarks_md import MPI_ENV, error_line, launch, publish
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
@@ -52,19 +51,9 @@ LAYERS = ["-options_file", "options/layers.opts", "-mat_bottom_gamma", "2e4", "-
 
 def run(args, out, exe=EXE, timeout=3600):
     """Run pmpm on 1 rank; its summary (with elapsed) or {"error": message}."""
-    if os.path.isdir(out):
-        shutil.rmtree(out)
-    cmd = [str(exe)] + [str(a) for a in args] + ["-output_dir", str(out), "-quiet"]
-    t0 = time.time()
-    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                       text=True, timeout=timeout)
-    if p.returncode != 0:
-        err = next((ln.split(": ", 2)[-1] for ln in p.stdout.splitlines()
-                    if ln.startswith("pmpm: error")), p.stdout[-200:])
-        return {"error": err.split(". ")[0]}
-    with open(Path(out) / "summary.json") as f:
-        s = json.load(f)
-    s["elapsed"] = time.time() - t0
+    s, output = launch(exe, 1, args, out, timeout)
+    if s is None:
+        return {"error": error_line(output, 200).split(": ", 2)[-1].split(". ")[0]}
     return s
 
 

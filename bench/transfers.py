@@ -17,13 +17,10 @@
    1e-7) at -cfl 0.5 and 0.4: steps to converge, stress error, or the failure.
 """
 import argparse
-import json
-import shutil
-import subprocess
 import time
 from pathlib import Path
 
-from benchmarks_md import MPI_ENV, publish
+from benchmarks_md import error_line, launch, publish
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "bench" / "out" / "transfers"
@@ -33,22 +30,15 @@ TRANSFERS = [("FLIP", ["-pic", 0]), ("FLIP + 5 % PIC", ["-pic", 0.05]), ("PIC", 
              ("APIC", ["-transfer", "apic"])]
 
 
+def dirname(name):
+    """A transfer's name as part of a directory name ("FLIP + 5 % PIC" -> "FLIP_5PIC")."""
+    return name.replace(' ', '').replace('%', '').replace('+', '_')
+
+
 def run(args, out, timeout=3600):
     """Run pmpm on 1 rank; return (summary, None) or (None, the error line)."""
-    if out.is_dir():
-        shutil.rmtree(out)
-    cmd = ["mpiexec", "-n", "1", str(ROOT / "build" / "pmpm")] + [str(a) for a in args] + \
-          ["-output_dir", str(out), "-quiet"]
-    t0 = time.time()
-    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                       text=True, timeout=timeout)
-    if p.returncode != 0:
-        err = [ln for ln in p.stdout.splitlines() if ln.startswith("pmpm: error")]
-        return None, (err[0] if err else p.stdout[-300:])
-    with open(out / "summary.json") as f:
-        s = json.load(f)
-    s["elapsed"] = time.time() - t0
-    return s, None
+    s, output = launch(ROOT / "build" / "pmpm", 1, args, out, timeout)
+    return (s, None) if s is not None else (None, error_line(output))
 
 
 def bar(quick):
@@ -66,7 +56,7 @@ def bar(quick):
         steps = int(round(800 * 0.05 / h))
         for shape in ("pmpm", "mpm"):
             for name, extra in TRANSFERS:
-                tag = f"bar_h{h}_{shape}_{name.replace(' ', '').replace('%', '').replace('+', '_')}"
+                tag = f"bar_h{h}_{shape}_{dirname(name)}"
                 s, err = run(["-options_file", "options/bar_vibration.opts", "-cell_size", h,
                               "-shape", shape, "-max_steps", steps] + extra, OUT / tag)
                 if s is None:
@@ -119,7 +109,7 @@ def block():
     for name, extra in TRANSFERS:
         s, err = run(["-options_file", "options/block.opts", "-block_velocity", "0,0",
                       "-block_period", "0", "-block_omega", 10] + extra,
-                     OUT / f"block_{name.replace(' ', '').replace('%', '').replace('+', '_')}")
+                     OUT / f"block_{dirname(name)}")
         if s is None:
             lines.append(f"| {name} | failed: {err[:80]} | | |")
             continue
@@ -138,7 +128,7 @@ def column():
     for cfl in (0.5, 0.4):
         for name, extra in TRANSFERS:
             s, err = run(["-options_file", "options/column.opts", "-cfl", cfl] + extra,
-                         OUT / f"column_{cfl}_{name.replace(' ', '').replace('%', '').replace('+', '_')}")
+                         OUT / f"column_{cfl}_{dirname(name)}")
             if s is None:
                 lines.append(f"| {name} | {cfl} | | failed: {err[12:110]}... | | |")
                 continue
