@@ -50,4 +50,23 @@ double fbar_apply(const ParticleView &P, const std::vector<int> &group, std::vec
   return change;
 }
 
+void fbar_pressure_shift(const ParticleView &P, const std::vector<int> &group,
+                         std::vector<double> &sums, std::vector<double> &shift) {
+  int ng = 0;
+  for (PetscInt p = 0; p < P.n; ++p) ng = std::max(ng, group[p] + 1);
+  sums.assign(2 * static_cast<size_t>(ng), 0.0);
+  shift.assign(P.n, 0.0);
+  auto pressure = [&](PetscInt p) {
+    const double *s = P.stress + p * NSTRESS;
+    return (s[0] + s[1] + s[2]) / 3.0;
+  };
+  for (PetscInt p = 0; p < P.n; ++p) {
+    if (group[p] < 0) continue;
+    sums[2 * group[p]] += P.vol[p] * pressure(p);
+    sums[2 * group[p] + 1] += P.vol[p];
+  }
+  for (PetscInt p = 0; p < P.n; ++p)
+    if (group[p] >= 0) shift[p] = sums[2 * group[p]] / sums[2 * group[p] + 1] - pressure(p);
+}
+
 } // namespace pmpm

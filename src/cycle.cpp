@@ -21,10 +21,24 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   PetscFunctionBeginUser;
   PetscCall(ParticlesGetView(sim.parts, P));
 
+  // 0. F-bar: the cells the particles start the step in (this rank owns them all), and with
+  //    -fbar_pressure cell the internal force's pressure averaged over them, conjugate to the
+  //    volume change averaged over them in step 5'.
+  const double *pshift = nullptr;
+  if (sim.set.fbar) {
+    PetscCall(PetscLogEventBegin(ev_fbar, 0, 0, 0, 0));
+    fbar_groups(P, g.origin, g.h, g.cell_lo, g.cell_hi, g.nbody, sim.fbar_group);
+    if (sim.set.fbar_pressure == FbarPressure::Cell) {
+      fbar_pressure_shift(P, sim.fbar_group, sim.fbar_sums, sim.fbar_shift);
+      pshift = sim.fbar_shift.data();
+    }
+    PetscCall(PetscLogEventEnd(ev_fbar, 0, 0, 0, 0));
+  }
+
   // 1. Particles to grid: mass, momentum, internal and external force (eq. 7-9, 14).
   PetscCall(PetscLogEventBegin(ev_p2g, 0, 0, 0, 0));
   PetscCall(GridGetLocal(g, true, G));
-  p2g<Shape>(P, load, G);
+  p2g<Shape>(P, load, G, nullptr, 0, pshift);
   if (!sim.traction_idx.empty())
     p2g_traction<Shape>(P, sim.loads, sim.traction_idx, load.factor, G);
   PetscCall(GridRestoreLocal(g, G));
@@ -45,7 +59,7 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     PetscCall(PetscLogEventBegin(ev_iface, 0, 0, 0, 0));
     const PetscInt nb = static_cast<PetscInt>(sim.iface_idx.size());
     PetscCall(GridGetLocal(gb, true, G));
-    p2g<Shape>(P, load, G, sim.iface_idx.data(), nb);
+    p2g<Shape>(P, load, G, sim.iface_idx.data(), nb, pshift);
     if (sim.iface.normals == InterfaceNormals::Cells)
       p2g_cell_colour(P, G); // all particles
     else
@@ -129,8 +143,6 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   //    volume. USL reads one nodal field in one pass; MUSL first maps the updated particle
   //    momenta back to the grid and takes the kinematics from that remapped velocity.
   PetscCall(PetscLogEventBegin(ev_g2p, 0, 0, 0, 0));
-  if (sim.set.fbar) // the cells the particles start the step in (this rank owns them all)
-    fbar_groups(P, g.origin, g.h, g.cell_lo, g.cell_hi, g.nbody, sim.fbar_group);
   G2PParams pp;
   pp.dt = dt;
   pp.pic = sim.set.pic;

@@ -95,6 +95,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                              "of one body in one cell (F-bar)",
                              nullptr, fbar, &fbar, nullptr));
   s.fbar = fbar;
+  PetscCall(PetscOptionsEnum("-fbar_pressure",
+                             "F-bar's internal force: particle (each particle's own pressure) or "
+                             "cell (the volume-averaged pressure of its cell and body, conjugate "
+                             "to the averaged volume change: B-bar; needed for dilatant flow)",
+                             nullptr, FbarPressureNames, (PetscEnum)s.fbar_pressure,
+                             (PetscEnum *)&s.fbar_pressure, nullptr));
   PetscBool stage_end = s.checkpoint_stage_end ? PETSC_TRUE : PETSC_FALSE;
   char restart[PETSC_MAX_PATH_LEN] = "";
   PetscCall(PetscOptionsInt("-checkpoint_every",
@@ -413,6 +419,16 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(BoundaryFromOptions(sim));
   PetscCheck(!sim.mats.empty() || !sim.chain_specs.empty(), sim.comm, PETSC_ERR_PLIB,
              "scene defined no material");
+  // F-bar with the particles' own pressures is unstable under dilatant flow (the c-phi footing
+  // heaves and flows at 0.8 of its capacity; README, "Anti-locking"): refused, not run.
+  for (auto &m : sim.mats)
+    PetscCheck(
+        !(sim.set.fbar && sim.set.fbar_pressure == FbarPressure::Particle && m.model->dilatant()),
+        sim.comm, PETSC_ERR_USER_INPUT,
+        "-fbar with the dilatant material %s (-mat_%s_dilation_angle > 0) needs "
+        "-fbar_pressure cell: with each particle's own pressure F-bar is unstable under "
+        "dilatant flow (README, Anti-locking)",
+        m.name.c_str(), m.name.c_str());
 
   // Inertia: either the given densities, or one wave speed for all materials (the fastest
   // physical one), which equalises the relaxation rate of stiff and soft layers. Loads come from

@@ -60,7 +60,7 @@ namespace {
 // Affine: APIC momentum m (w v + B a) (affine.hpp).
 template <class Shape, bool Multi, bool Affine>
 void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
-              PetscInt nidx) {
+              PetscInt nidx, const double *pshift) {
   const int ND = Multi ? G.nd : GridDof::NDOF;
   const PetscInt row = G.gm[0] * ND;
   constexpr bool bodies = Multi;
@@ -79,7 +79,9 @@ void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const 
       for (int e = 0; e < DIM * DIM; ++e) mB[e] = m * P.B[p * DIM * DIM + e];
     const double *s = P.stress + p * NSTRESS;
     // internal force -V sigma . grad S (eq. 9; with PMPM weights eq. 14)
-    const double sxx = V * s[0], syy = V * s[1], sxy = V * s[3];
+    // (F-bar: the pressure is the group's, p_bar - p added to the normal stresses; antilock.hpp)
+    const double ps = pshift ? pshift[p] : 0.0;
+    const double sxx = V * (s[0] + ps), syy = V * (s[1] + ps), sxy = V * s[3];
     const double fb0 = load.factor * P.weight[p] * load.gdir[0];
     const double fb1 = load.factor * P.weight[p] * load.gdir[1];
     for (int b = 0; b < S.ny; ++b) {
@@ -109,16 +111,16 @@ void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const 
 
 template <class Shape>
 void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
-         PetscInt nidx) {
+         PetscInt nidx, const double *pshift) {
   const bool multi = G.nbody > 1, affine = P.B != nullptr;
   if (multi && affine)
-    p2g_impl<Shape, true, true>(P, load, G, idx, nidx);
+    p2g_impl<Shape, true, true>(P, load, G, idx, nidx, pshift);
   else if (multi)
-    p2g_impl<Shape, true, false>(P, load, G, idx, nidx);
+    p2g_impl<Shape, true, false>(P, load, G, idx, nidx, pshift);
   else if (affine)
-    p2g_impl<Shape, false, true>(P, load, G, idx, nidx);
+    p2g_impl<Shape, false, true>(P, load, G, idx, nidx, pshift);
   else
-    p2g_impl<Shape, false, false>(P, load, G, idx, nidx);
+    p2g_impl<Shape, false, false>(P, load, G, idx, nidx, pshift);
 }
 
 template <class Shape>
@@ -502,7 +504,7 @@ void grid_velocity(const GridView &G, const FaceBC face[2 * DIM],
   template void p2g_traction<S>(const ParticleView &, const std::vector<ParticleLoad> &,           \
                                 const std::vector<PetscInt> &, double, const GridView &);          \
   template void p2g<S>(const ParticleView &, const Load &, const GridView &, const PetscInt *,     \
-                       PetscInt);                                                                  \
+                       PetscInt, const double *);                                                  \
   template void p2g_colour_gradient<S>(const ParticleView &, const PetscInt *, PetscInt,           \
                                        const GridView &);                                          \
   template void g2p_velocity<S>(const ParticleView &, const GridView &, const GridView *,          \

@@ -1,5 +1,6 @@
 """The strip footing (options/footing.opts, REFERENCE.md 2.6): Prandtl's bearing capacity with F-bar,
-and the locked overshoot without it.
+and the locked overshoot without it; the c-phi footing (options/footing_cphi.opts) within 10 % of
+Prandtl-Reissner's with F-bar and the cell pressure.
 
 usage: test_footing.py EXE NP OUTDIR
 A smooth strip of width B = 1 m on weightless von Mises soil (k = sigma_y / sqrt 3 = 10 kPa,
@@ -24,6 +25,21 @@ sooner):
   - with -fbar: holds at 0.95 q_u, collapses at 1.05 q_u: the capacity within 5 % of Prandtl's;
   - without: holds at 1.05 q_u, the locked overshoot (linear cells with four particles carry
     more volume constraints than isochoric flow allows).
+
+c-phi soil (Drucker-Prager matched in plane strain, c = 10 kPa, phi = psi = 20 deg, E / c = 1000):
+Prandtl-Reissner q_u = c N_c = 148.35 kPa. Plain F-bar is unstable under this dilatant flow (at
+h = B/16 the soil beside the strip heaves off the grid at 0.8 q_u, kinetic energy growing), so the
+run is refused unless -fbar_pressure cell gives the force the cell's pressure (antilock.hpp).
+Measured (1 rank, soil half-width 4.5 m: the mechanism reaches 3.03 B; settlements in m):
+  h = B/16, F-bar + cell pressure: holds at 1.10 (0.085), collapses at 1.20   -> 1.10-1.20 q_u
+  h = B/32, F-bar + cell pressure: holds at 1.05 (0.054), collapses at 1.10   -> 1.05-1.10 q_u
+  h = B/32, no F-bar:              holds at 1.05 (0.060), collapses at 1.10   -> 1.05-1.10 q_u
+so at this resolution the c-phi capacity is within 10 % either way; locking shows in the von
+Mises case (above), not here. Asserted at h = B/32 (soil half-width 4 m) with stages at 0.95 and
+1.10 q_u:
+  - the scene's exact value equals c N_c (1e-9);
+  - plain F-bar with psi > 0 is refused with a message naming -fbar_pressure cell;
+  - with -fbar -fbar_pressure cell: holds at 0.95 q_u, collapses at 1.10 q_u: within 10 %.
 """
 import math
 import sys
@@ -63,4 +79,28 @@ for s in st:
           f"{s['steps']} steps")
 c.check("no F-bar: holds at 1.05 q_u (locking: more than the soil can carry)",
         len(st) == 2 and st[1]["holds"])
+
+# c-phi: Prandtl-Reissner
+cohesion, phi = 10e3, math.radians(20.0)
+Nq = math.exp(math.pi * math.tan(phi)) * math.tan(math.pi / 4 + phi / 2) ** 2
+qu_c = cohesion * (Nq - 1) / math.tan(phi)
+cphi = ["-options_file", "options/footing_cphi.opts", "-cell_size", "0.03125",
+        "-footing_pressures", f"{0.95 * qu_c:.6f},{1.10 * qu_c:.6f}"]
+code, err = run(exe, np, cphi + ["-fbar_pressure", "particle"], f"{out}/cphi_refused",
+                expect_ok=False)
+c.check("c-phi: plain F-bar under dilatant flow is refused, naming -fbar_pressure cell",
+        code != 0 and "-fbar_pressure cell" in err)
+run(exe, np, cphi, f"{out}/cphi")
+r = summary(f"{out}/cphi")["results"]
+c.le("c-phi: bearing_capacity_exact against c N_c (relative)",
+     abs(r["bearing_capacity_exact"] / qu_c - 1), 1e-9)
+st = r["stages"]
+for s in st:
+    print(f"  c-phi, F-bar + cell pressure: q = {s['pressure'] / qu_c:.3f} q_u "
+          f"{'holds' if s['holds'] else 'collapses'}, settlement {s['settlement']:.4f} m, "
+          f"{s['steps']} steps")
+c.check("c-phi: holds at 0.95 q_u", len(st) >= 1 and st[0]["holds"] and
+        st[0]["settlement"] < 0.1 * B)
+c.check("c-phi: collapses at 1.10 q_u (capacity within 10 % of Prandtl-Reissner's)",
+        len(st) == 2 and not st[1]["holds"])
 c.done()

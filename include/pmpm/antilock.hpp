@@ -13,6 +13,17 @@
 // groups are the cells the particles sat in at the start of the step (all on the rank that owns
 // the cell, so the average needs no communication) and one group per body: bodies on either side
 // of a membrane chain share cells and must not share volume changes.
+//
+// The internal force -sum_p V_p sigma_p : grad S_ip still uses each particle's own pressure, so
+// its power differs from the stress power by sum_p V_p (p_p - p_bar)(tr D_p - tr D_bar) over a
+// group: nothing when the group's pressures agree (elastic and isochoric flow keep them equal),
+// a source of energy when a dilatant return map sets them apart. The strip footing on c-phi soil
+// with psi = phi heaves and flows at 0.8 of its capacity that way. -fbar_pressure cell replaces
+// p_p by the group's volume-averaged p_bar in the force (B-bar's force, de Souza Neto et al.
+// 2008, 15.3): the power is then exactly sum_p V_p s_p : D_p + p_bar sum_p V_p tr D_p, the
+// stress power of the averaged volume change. It is not the default: on the slope cover
+// (options/cover_slope.opts, psi = 0) it lets the thin cover creep at its surface and the
+// geostatic stage ends its 30,000 steps at a ratio of 1e-2 (README, Anti-locking).
 #pragma once
 #include "pmpm/particles.hpp"
 #include <vector>
@@ -29,5 +40,10 @@ void fbar_groups(const ParticleView &P, const double origin[DIM], double h, cons
 // |dJ_bar / dJ_p - 1| (how much the average changed a particle's volume step).
 double fbar_apply(const ParticleView &P, const std::vector<int> &group, std::vector<double> &sums,
                   double *dudx);
+
+// The internal force's pressure conjugate to F-bar's volume change: shift[p] = p_bar - p_p, with
+// p_bar the volume average of p = tr(sigma) / 3 over the particle's group (0 outside a group).
+void fbar_pressure_shift(const ParticleView &P, const std::vector<int> &group,
+                         std::vector<double> &sums, std::vector<double> &shift);
 
 } // namespace pmpm

@@ -43,6 +43,8 @@ public:
   virtual double wave_modulus() const = 0;
   // True when the model can yield: scenes report plastic state only for these.
   virtual bool plastic() const { return false; }
+  // plastic flow that changes volume (Drucker-Prager with psi > 0)
+  virtual bool dilatant() const { return false; }
   // True when the stress is updated from strain increments (an eigenstrain can be imposed).
   virtual bool rate_form() const { return true; }
   virtual void update_stress(const StressBatch &b) const = 0;

@@ -25,6 +25,10 @@ inline constexpr const char *InertiaScalingNames[] = {"none", "wave_speed", "Ine
 // The equilibrium solver of every stage: explicit dynamic relaxation (relaxation.cpp) or Newton
 // load steps on PETSc SNES (newton.cpp).
 enum class Solver { Relaxation = 0, Newton = 1 };
+// -fbar_pressure: the internal force's pressure under F-bar, the particle's own or its group's
+enum class FbarPressure { Particle = 0, Cell = 1 };
+inline constexpr const char *FbarPressureNames[] = {"particle", "cell", "FbarPressure",
+                                                    "FBAR_PRESSURE_", nullptr};
 inline constexpr const char *SolverNames[] = {"relaxation", "newton", "Solver", "SOLVER_", nullptr};
 
 // Options every scene accepts (the interface contract in README.md).
@@ -50,6 +54,7 @@ struct Settings {
   bool dynamic = false; // -dynamic: no damping, no convergence test (run max_steps)
   bool musl = false;    // -musl: recompute nodal velocities from updated particle momenta
   bool fbar = false;    // -fbar: cell-averaged volume change per step (antilock.hpp)
+  FbarPressure fbar_pressure = FbarPressure::Particle; // -fbar_pressure (antilock.hpp)
   // checkpoint.hpp: write the state every K steps (0: never) and after every stage; resume
   PetscInt checkpoint_every = 0;
   bool checkpoint_stage_end = false;
@@ -165,6 +170,7 @@ struct Simulation {
   std::vector<double> dudx;              // L dt per particle (scratch)
   std::vector<int> fbar_group;           // -fbar: each particle's cell and body (scratch)
   std::vector<double> fbar_sums;         // -fbar: volumes per group (scratch)
+  std::vector<double> fbar_shift;        // -fbar: group pressure less the particle's (scratch)
   // Supports inside the box (transfers.hpp): nodal dofs at an imposed velocity, set by a scene,
   // and the weighted force the body put on them at the last step (global).
   PrescribedVelocity prescribed;

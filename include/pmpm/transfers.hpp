@@ -24,9 +24,11 @@ struct Load {
 
 // idx (nidx entries) restricts the sum to some particles (an interface body); null: all.
 // A view with an affine field (P.B, -transfer apic) adds APIC's affine momentum (affine.hpp).
+// pshift (per particle, or null) is added to the in-plane normal stresses of the internal force:
+// F-bar's group pressure (antilock.hpp).
 template <class Shape>
 void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx = nullptr,
-         PetscInt nidx = 0);
+         PetscInt nidx = 0, const double *pshift = nullptr);
 
 // Interface normals (-interface_normals particles): sum_p V_p c_p grad S_ip / h over body 1, which
 // points out of it (S_i falls away from node i), written over the FEXT slots of the whole view.

@@ -16,8 +16,8 @@
 // N_q = e^(pi tan phi) tan^2(45 + phi/2) (Prandtl-Reissner).
 //
 // Linear cells lock under isochoric plastic flow: without -fbar the soil holds pressures above
-// q_u (tests/test_footing.py shows by how much). With strongly dilatant Drucker-Prager F-bar is not
-// verified (README, "Anti-locking").
+// q_u (tests/test_footing.py shows by how much). Dilatant Drucker-Prager (psi > 0) needs
+// -fbar_pressure cell with -fbar (antilock.hpp; options/footing_cphi.opts).
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/materials/von_mises.hpp"
@@ -64,6 +64,22 @@ class FootingScene final : public Scene {
     PetscCall(SumAll(sim.comm, v, 2));
     *s = v[1] > 0 ? v[0] / v[1] : 0;
     PetscFunctionReturn(0);
+  }
+
+  // Friction angle of the Mohr-Coulomb soil the exact solution is for (0 for von Mises).
+  double phi_rad(const Simulation &sim) const {
+    if (const auto *dp = dynamic_cast<const DruckerPrager *>(sim.mats[0].model.get()))
+      return dp->params().phi_deg * M_PI / 180.0;
+    return 0;
+  }
+
+  // How far Prandtl's mechanism reaches from the centre line: the active wedge under the strip
+  // (r0 = (B/2) / cos(45 + phi/2)), the log-spiral fan (r1 = r0 e^((pi/2) tan phi)) and the
+  // passive wedge, whose surface is 2 r1 cos(45 - phi/2) long. 1.5 B for phi = 0.
+  double mechanism_reach(const Simulation &sim) const {
+    const double phi = phi_rad(sim), r0 = 0.5 * B_ / std::cos(M_PI / 4 + phi / 2);
+    const double r1 = r0 * std::exp(0.5 * M_PI * std::tan(phi));
+    return 0.5 * B_ + 2 * r1 * std::cos(M_PI / 4 - phi / 2);
   }
 
   double exact(const Simulation &sim) const {
@@ -116,16 +132,12 @@ public:
     PetscCheck(collapse_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-footing_collapse_settlement must be > 0 (got %g)", collapse_);
     PetscCheck(ramp_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-footing_stage_ramp must be >= 0");
-    if (W_ <= 0) W_ = 3 * B_;
+    if (W_ <= 0) W_ = 3 * B_; // reach 3.03 B at phi = 20 deg: set it for such soils
     if (D_ <= 0) D_ = 2 * B_;
     PetscInt nb, nw, nd;
     PetscCall(CheckCells(sim.comm, "-footing_width / 2", 0.5 * B_, sim.set.h, &nb));
     PetscCall(CheckCells(sim.comm, "-footing_soil_width", W_, sim.set.h, &nw));
     PetscCall(CheckCells(sim.comm, "-footing_soil_depth", D_, sim.set.h, &nd));
-    PetscCheck(W_ >= B_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-footing_soil_width (%g m) must be at least the footing width %g m (Prandtl's "
-               "mechanism reaches 1.5 B from the centre for phi = 0)",
-               W_, B_);
     sim.origin[0] = sim.origin[1] = 0;
     sim.ncell[0] = nw;
     // room above the surface for the heave beside a collapsing footing
@@ -138,6 +150,12 @@ public:
     PetscCheck(sim.mats[0].model->plastic(), sim.comm, PETSC_ERR_USER_INPUT,
                "-mat_soil_model must be von_mises or drucker_prager (a footing has a bearing "
                "capacity only in a soil that yields)");
+    const double reach = mechanism_reach(sim);
+    PetscCheck(W_ >= reach, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-footing_soil_width (%g m) must be at least %g m: Prandtl's mechanism reaches "
+               "%.2f B from the centre line for this soil (1.5 B for phi = 0, 3.03 B for 20 deg), "
+               "and a side closer than that raises the capacity",
+               W_, reach, reach / B_);
     PetscFunctionReturn(0);
   }
 

@@ -3,7 +3,9 @@
 //   fbar_apply: every particle of a group ends the step with the group's volume ratio
 //   (sum of new volumes / sum of old volumes), the group's total volume is unchanged, each
 //   particle's isochoric increment (I + du) / sqrt(det) is its own, F and vol follow the
-//   increment, and groups (cells, bodies) do not mix. A uniform increment is left untouched.
+//   increment, and groups (cells, bodies) do not mix. A uniform increment is left untouched;
+//   fbar_pressure_shift: p + shift is the group's volume-averaged pressure, and the force's power
+//   with it equals the stress power of F-bar's averaged volume rate (conjugacy), for any rates.
 #include "check.hpp"
 #include "pmpm/antilock.hpp"
 #include <cmath>
@@ -14,11 +16,13 @@ using namespace pmpm;
 namespace {
 
 struct Particles {
-  std::vector<double> x, F, vol, du;
+  std::vector<double> x, F, vol, du, stress;
   std::vector<PetscInt> body;
   ParticleView P;
-  explicit Particles(int n) : x(2 * n), F(4 * n), vol(n), du(4 * n), body(n, 0) {
+  explicit Particles(int n)
+      : x(2 * n), F(4 * n), vol(n), du(4 * n), stress(NSTRESS * n), body(n, 0) {
     P.n = n;
+    P.stress = stress.data();
     P.x = x.data();
     P.F = F.data();
     P.vol = vol.data();
@@ -117,11 +121,56 @@ void test_uniform() {
     for (int k = 0; k < 4; ++k) CHECK_CLOSE(s.du[4 * p + k], du[k], 1e-15);
 }
 
+void test_pressure_shift() {
+  // groups 0 (three particles) and 2 (two), one particle outside; random stresses and volumes
+  Particles s(6);
+  pmpm_test::Lcg r(11);
+  std::vector<int> g = {0, 2, 0, 2, -1, 0};
+  for (int p = 0; p < 6; ++p) {
+    s.vol[p] = r.uniform(0.5, 1.5);
+    for (int k = 0; k < NSTRESS; ++k) s.stress[NSTRESS * p + k] = r.uniform(-2e4, 1e3);
+  }
+  std::vector<double> sums, shift;
+  fbar_pressure_shift(s.P, g, sums, shift);
+  auto pressure = [&](int p) {
+    const double *t = &s.stress[NSTRESS * p];
+    return (t[0] + t[1] + t[2]) / 3.0;
+  };
+  for (int grp : {0, 2}) {
+    double vp = 0, v = 0;
+    for (int p = 0; p < 6; ++p)
+      if (g[p] == grp) vp += s.vol[p] * pressure(p), v += s.vol[p];
+    for (int p = 0; p < 6; ++p)
+      if (g[p] == grp) CHECK_CLOSE(pressure(p) + shift[p], vp / v, 1e-12 * 2e4);
+  }
+  CHECK_CLOSE(shift[4], 0.0, 0.0); // outside every group: its own pressure
+  // conjugacy: sum_p V (sigma_p + shift_p I) : D_p = sum_p V (sigma_p : D_p + p_p (trD_bar -
+  // trD_p)) in plane strain (D_zz = 0), trD_bar the group's volume average, for random rates D
+  for (int trial = 0; trial < 3; ++trial) {
+    std::vector<double> D(4 * 6);
+    for (double &d : D) d = r.uniform(-1.0, 1.0);
+    auto tr = [&](int p) { return D[4 * p] + D[4 * p + 3]; };
+    double lhs = 0, rhs = 0;
+    for (int p = 0; p < 6; ++p) {
+      if (g[p] < 0) continue;
+      const double *t = &s.stress[NSTRESS * p], *d = &D[4 * p];
+      const double sd = t[0] * d[0] + t[1] * d[3] + t[3] * (d[1] + d[2]);
+      lhs += s.vol[p] * (sd + shift[p] * tr(p));
+      double vt = 0, v = 0;
+      for (int q = 0; q < 6; ++q)
+        if (g[q] == g[p]) vt += s.vol[q] * tr(q), v += s.vol[q];
+      rhs += s.vol[p] * (sd + pressure(p) * (vt / v - tr(p)));
+    }
+    CHECK_CLOSE(lhs, rhs, 1e-10 * 2e4);
+  }
+}
+
 } // namespace
 
 int main() {
   test_groups();
   test_apply();
   test_uniform();
+  test_pressure_shift();
   return pmpm_test::report("antilock");
 }

@@ -191,6 +191,7 @@ public:
   const char *model() const override { return "drucker_prager"; }
   double wave_modulus() const override { return prm_.el.M(); }
   bool plastic() const override { return true; }
+  bool dilatant() const override { return prm_.psi_deg > 0; }
   const DruckerPragerParams &params() const { return prm_; }
   const DPCoefficients &coefficients() const { return k_; }
   void update_stress(const StressBatch &b) const override {
