@@ -30,8 +30,10 @@ template <class Shape> struct Stencil {
   int nx, ny; // nodes actually touched per direction (the rest have zero weight and gradient)
   double *node0;
 };
+// Always inlined: called out of line (as GCC chose) it took 17 % of a uGIMP step (BENCHMARKS.md,
+// "A leaner explicit cycle").
 template <class Shape, bool Affine = false>
-inline void stencil(const GridView &G, const double *x, const double *l, Stencil<Shape> &S) {
+__attribute__((always_inline)) inline void stencil(const GridView &G, const double *x, const double *l, Stencil<Shape> &S) {
   constexpr int NS = Shape::NS;
   const double invh = 1.0 / G.h;
   int base[DIM];
@@ -323,7 +325,12 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
   constexpr bool bodies = Multi;      // each particle reads its own body's block
   const double hx = G0.origin[0] + G0.ncell[0] * G0.h, hy = G0.origin[1] + G0.ncell[1] * G0.h;
   const double invh = 1.0 / G0.h;
-  double c2max = 0, v2max = 0;
+  const double ox = G0.origin[0], oy = G0.origin[1];
+  const double gd0 = prm.gdir[0], gd1 = prm.gdir[1];
+  // the sums in registers (through st they were stored and reloaded every particle: the stores
+  // into the particle arrays may alias them); the same order, the same sums
+  double c2max = 0, v2max = 0, kinetic = 0, weight_power = 0;
+  PetscInt left = 0;
   Stencil<Shape> S;
   for (PetscInt p = 0; p < P.n; ++p) {
     double *x = P.x + p * DIM, *v = P.v + p * DIM;
@@ -387,14 +394,14 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
     const double J = F[0] * F[3] - F[1] * F[2];
     P.vol[p] = J * P.vol0[p];
     const double speed2 = v[0] * v[0] + v[1] * v[1];
-    st->kinetic += 0.5 * P.mass[p] * speed2;
+    kinetic += 0.5 * P.mass[p] * speed2;
     if (Affine && vel) { // the affine part, with the D_p that B_p was just taken at
       double D[DIM] = {0, 0};
       for (int a = 0; a < S.nx; ++a) D[0] += S.wx[a] * S.rx[a] * S.rx[a];
       for (int b = 0; b < S.ny; ++b) D[1] += S.wy[b] * S.ry[b] * S.ry[b];
-      st->kinetic += affine_kinetic(P.mass[p], P.B + p * DIM * DIM, D);
+      kinetic += affine_kinetic(P.mass[p], P.B + p * DIM * DIM, D);
     }
-    st->weight_power += P.weight[p] * (prm.gdir[0] * v[0] + prm.gdir[1] * v[1]);
+    weight_power += P.weight[p] * (gd0 * v[0] + gd1 * v[1]);
     // Instability and escape checks, reported by the caller with the particle's id. The centre
     // must stay on the grid (the ghosted DMDA has room for the support beyond it).
     const char *what = nullptr;
@@ -402,7 +409,7 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
       what = "non-positive or non-finite volume ratio J";
     else if (!std::isfinite(x[0] + x[1] + v[0] + v[1]))
       what = "non-finite position or velocity";
-    else if (!(x[0] >= G0.origin[0] && x[0] < hx && x[1] >= G0.origin[1] && x[1] < hy))
+    else if (!(x[0] >= ox && x[0] < hx && x[1] >= oy && x[1] < hy))
       what = "particle left the grid";
     if (what) {
       if (st->bad++ == 0) {
@@ -413,13 +420,20 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
       }
       continue;
     }
-    // squared wave speed and particle speed; their roots are taken once, after the loop
-    c2max = std::fmax(c2max, wave_modulus[P.mat[p]] * P.vol[p] / P.mass[p]);
-    v2max = std::fmax(v2max, speed2);
+    // squared wave speed and particle speed; their roots are taken once, after the loop (no
+    // std::fmax: GCC calls libm's through the PLT; both are finite here, so a compare is exact)
+    const double c2 = wave_modulus[P.mat[p]] * P.vol[p] / P.mass[p];
+    c2max = c2 > c2max ? c2 : c2max;
+    v2max = speed2 > v2max ? speed2 : v2max;
     // on the grid, so the truncation is a floor
-    const PetscInt cell[DIM] = {static_cast<PetscInt>((x[0] - G0.origin[0]) * invh),
-                                static_cast<PetscInt>((x[1] - G0.origin[1]) * invh)};
-    if (!grid->owns_cell(cell)) ++st->left_rank;
+    const PetscInt cell[DIM] = {static_cast<PetscInt>((x[0] - ox) * invh),
+                                static_cast<PetscInt>((x[1] - oy) * invh)};
+    if (!grid->owns_cell(cell)) ++left;
+  }
+  if (kin) {
+    st->kinetic += kinetic;
+    st->weight_power += weight_power;
+    st->left_rank += left;
   }
   // max_p (c_p + |v_p|) <= max c + max |v|: slightly conservative, two roots per step; the
   // caller reduces both maxima across ranks before adding them
