@@ -29,19 +29,11 @@ template <class Shape> struct Stencil {
   double rx[NS], ry[NS], ax[NS], ay[NS]; // Affine only: offsets (m), affine weights (per m)
   int nx, ny; // nodes actually touched per direction (the rest have zero weight and gradient)
   double *node0;
-  // Only cpGIMP's 4-node support is trimmed. uGIMP keeps its 3 x 3 loops of fixed length: the
-  // nodes a block inside one cell does not touch add exact zeros (the same sums bit for bit),
-  // and the loops unroll without the mispredicted branches of a data-dependent length
-  // (BENCHMARKS.md, "A leaner explicit cycle").
-  static constexpr bool trim = NS > 3;
-  int mx() const { return trim ? nx : NS; }
-  int my() const { return trim ? ny : NS; }
 };
 // Always inlined: called out of line (as GCC chose) it took 17 % of a uGIMP step (BENCHMARKS.md,
 // "A leaner explicit cycle").
 template <class Shape, bool Affine = false>
-__attribute__((always_inline)) inline void stencil(const GridView &G, const double *x,
-                                                   const double *l, Stencil<Shape> &S) {
+__attribute__((always_inline)) inline void stencil(const GridView &G, const double *x, const double *l, Stencil<Shape> &S) {
   constexpr int NS = Shape::NS;
   const double invh = 1.0 / G.h;
   int base[DIM];
@@ -53,11 +45,9 @@ __attribute__((always_inline)) inline void stencil(const GridView &G, const doub
     affine1d<Shape>(xi[1], base[1], S.wy, S.dwy, G.h, S.ry, S.ay);
   }
   S.nx = S.ny = NS;
-  // a cpGIMP block inside one cell touches two nodes only, a small one three
-  if (Stencil<Shape>::trim) {
-    while (S.nx > 2 && S.wx[S.nx - 1] == 0.0 && S.dwx[S.nx - 1] == 0.0) --S.nx;
-    while (S.ny > 2 && S.wy[S.ny - 1] == 0.0 && S.dwy[S.ny - 1] == 0.0) --S.ny;
-  }
+  // a block inside one cell touches two nodes only (uGIMP, cpGIMP); a small cpGIMP block three
+  while (S.nx > 2 && S.wx[S.nx - 1] == 0.0 && S.dwx[S.nx - 1] == 0.0) --S.nx;
+  while (S.ny > 2 && S.wy[S.ny - 1] == 0.0 && S.dwy[S.ny - 1] == 0.0) --S.ny;
   for (int a = 0; a < NS; ++a) {
     S.dwx[a] *= invh;
     S.dwy[a] *= invh;
@@ -96,10 +86,10 @@ void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const 
     const double sxx = V * (s[0] + ps), syy = V * (s[1] + ps), sxy = V * s[3];
     const double fb0 = load.factor * P.weight[p] * load.gdir[0];
     const double fb1 = load.factor * P.weight[p] * load.gdir[1];
-    for (int b = 0; b < S.my(); ++b) {
+    for (int b = 0; b < S.ny; ++b) {
       double *r = S.node0 + b * row;
       const double wy = S.wy[b], dwy = S.dwy[b];
-      for (int a = 0; a < S.mx(); ++a) {
+      for (int a = 0; a < S.nx; ++a) {
         double *node = r + a * ND;
         const double w = S.wx[a] * wy, gx = S.dwx[a] * wy, gy = S.wx[a] * dwy;
         node[GridDof::M] += w * m;
@@ -350,10 +340,10 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
     if (bodies) S.node0 += P.body[p] * GridDof::NDOF;
     double vg0 = 0, vg1 = 0, ag0 = 0, ag1 = 0, L0 = 0, L1 = 0, L2 = 0, L3 = 0;
     double Bn[DIM * DIM] = {0, 0, 0, 0};
-    for (int b = 0; b < S.my(); ++b) {
+    for (int b = 0; b < S.ny; ++b) {
       const double *r = S.node0 + b * row;
       const double wy = S.wy[b], dwy = S.dwy[b];
-      for (int a = 0; a < S.mx(); ++a) {
+      for (int a = 0; a < S.nx; ++a) {
         const double *node = r + a * ND;
         const double w = S.wx[a] * wy;
         const double nv0 = node[GridDof::P], nv1 = node[GridDof::P + 1];
@@ -407,8 +397,8 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
     kinetic += 0.5 * P.mass[p] * speed2;
     if (Affine && vel) { // the affine part, with the D_p that B_p was just taken at
       double D[DIM] = {0, 0};
-      for (int a = 0; a < S.mx(); ++a) D[0] += S.wx[a] * S.rx[a] * S.rx[a];
-      for (int b = 0; b < S.my(); ++b) D[1] += S.wy[b] * S.ry[b] * S.ry[b];
+      for (int a = 0; a < S.nx; ++a) D[0] += S.wx[a] * S.rx[a] * S.rx[a];
+      for (int b = 0; b < S.ny; ++b) D[1] += S.wy[b] * S.ry[b] * S.ry[b];
       kinetic += affine_kinetic(P.mass[p], P.B + p * DIM * DIM, D);
     }
     weight_power += P.weight[p] * (gd0 * v[0] + gd1 * v[1]);
