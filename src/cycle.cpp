@@ -147,6 +147,14 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   pp.dt = dt;
   pp.pic = sim.set.pic;
   for (int d = 0; d < DIM; ++d) pp.gdir[d] = load.gdir[d];
+  // 6 fused into 5 when every material is linear elastic in rate form and nothing reads the
+  // velocity gradient in between (F-bar) or subtracts from it (an eigenstrain)
+  const bool eigen = load.shrink != 0;
+  std::vector<double> elastic(2 * sim.mats.size());
+  bool fuse = !sim.set.fbar && !eigen;
+  for (size_t m = 0; fuse && m < sim.mats.size(); ++m)
+    fuse = sim.mats[m].model->linear_elastic_rate(elastic[2 * m], elastic[2 * m + 1]);
+  if (fuse) pp.elastic = elastic.data();
   PetscCall(GridGetLocal(g, false, G));
   if (!sim.set.musl) {
     g2p<Shape>(P, G, G1, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);
@@ -216,10 +224,10 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   }
 
   // 6. Stress update, one batch per material (eq. 6), less any imposed eigenstrain.
+  //    (Done in step 5 when fused: the event then stays empty, G2P holds the time.)
   PetscCall(PetscLogEventBegin(ev_stress, 0, 0, 0, 0));
-  const bool eigen = load.shrink != 0;
   if (eigen) rep.eigen_power = shrinkage_increment(P, sim.shrink, load.shrink, sim.eigen);
-  for (size_t m = 0; m < sim.mats.size(); ++m) {
+  for (size_t m = 0; !fuse && m < sim.mats.size(); ++m) {
     StressBatch b;
     b.n = static_cast<int>(sim.mat_idx[m].size());
     if (b.n == 0) continue;

@@ -1,5 +1,6 @@
 #include "pmpm/transfers.hpp"
 #include "pmpm/affine.hpp"
+#include "pmpm/materials/elastic.hpp"
 #include "pmpm/shape_cpgimp.hpp"
 #include <algorithm>
 #include <cmath>
@@ -33,7 +34,8 @@ template <class Shape> struct Stencil {
 // Always inlined: called out of line (as GCC chose) it took 17 % of a uGIMP step (BENCHMARKS.md,
 // "A leaner explicit cycle").
 template <class Shape, bool Affine = false>
-__attribute__((always_inline)) inline void stencil(const GridView &G, const double *x, const double *l, Stencil<Shape> &S) {
+__attribute__((always_inline)) inline void stencil(const GridView &G, const double *x,
+                                                   const double *l, Stencil<Shape> &S) {
   constexpr int NS = Shape::NS;
   const double invh = 1.0 / G.h;
   int base[DIM];
@@ -327,6 +329,7 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
   const double invh = 1.0 / G0.h;
   const double ox = G0.origin[0], oy = G0.origin[1];
   const double gd0 = prm.gdir[0], gd1 = prm.gdir[1];
+  const double *el = prm.elastic;
   // the sums in registers (through st they were stored and reloaded every particle: the stores
   // into the particle arrays may alias them); the same order, the same sums
   double c2max = 0, v2max = 0, kinetic = 0, weight_power = 0;
@@ -380,11 +383,13 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
     if (!kin) continue;
     x[0] += dt * vg0; // eq. 5
     x[1] += dt * vg1;
-    double *du = dudx + p * DIM * DIM, *F = P.F + p * DIM * DIM;
-    du[0] = L0 * dt;
-    du[1] = L1 * dt;
-    du[2] = L2 * dt;
-    du[3] = L3 * dt;
+    double dul[DIM * DIM] = {L0 * dt, L1 * dt, L2 * dt, L3 * dt}, *F = P.F + p * DIM * DIM;
+    const double *du = dul;
+    if (el) { // the stress update fused (one pass over the particles, no dudx round trip)
+      const double *e = el + 2 * P.mat[p];
+      elastic_rate_update(e[0], e[1], du, du[0], du[3], 0.0, P.stress + p * NSTRESS);
+    } else
+      for (int k = 0; k < DIM * DIM; ++k) dudx[p * DIM * DIM + k] = dul[k];
     // F <- (I + L dt) F
     const double F0 = F[0], F1 = F[1], F2 = F[2], F3 = F[3];
     F[0] = (1.0 + du[0]) * F0 + du[1] * F2;

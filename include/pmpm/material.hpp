@@ -48,6 +48,10 @@ public:
   // True when the stress is updated from strain increments (an eigenstrain can be imposed).
   virtual bool rate_form() const { return true; }
   virtual void update_stress(const StressBatch &b) const = 0;
+  // Linear elasticity in rate form (LinearElastic): its Lame constant lambda and 2G, so G2P can
+  // update the stress in its own particle loop (elastic_rate_update, elastic.hpp). False for
+  // every other model.
+  virtual bool linear_elastic_rate(double & /*lambda*/, double & /*G2*/) const { return false; }
 };
 
 // Small-strain increment and spin from L*dt (3x3, plane strain: zz rows/cols zero).

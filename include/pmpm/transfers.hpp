@@ -91,6 +91,12 @@ struct G2PParams {
   double dt = 0;
   double pic = 0;            // PIC fraction of the velocity update (0 = pure FLIP)
   double gdir[DIM] = {0, 0}; // gravity direction, for the power of the body forces
+  // Fused stress update (null: none; dudx is written for the materials' batch update instead):
+  // per material index, lambda and 2G of a linear elastic rate law, which g2p and
+  // g2p_kinematics then apply to each particle's stress (elastic_rate_update) in place of
+  // writing dudx. Only when every material is LinearElastic and nothing else reads dudx (no
+  // F-bar, no eigenstrain): cycle.cpp decides.
+  const double *elastic = nullptr;
 };
 
 struct G2PStats {

@@ -5,6 +5,21 @@
 
 namespace pmpm {
 
+// The linear elastic rate update of one particle (LinearElastic::update_stress without an
+// eigenstrain): g = L dt, row-major. Plane strain written out (the same algebra as jaumann_rotate
+// + elastic_increment on 3x3 tensors, without the temporaries): with spin
+// w = (du/dy - dv/dx)/2, sxx += 2 w sxy, syy -= 2 w sxy, sxy += w (syy - sxx), szz unchanged;
+// then + C : de. G2P calls it too, fused into its particle loop (transfers.hpp, G2PParams).
+inline void elastic_rate_update(double lam, double G2, const double g[DIM * DIM], double exx,
+                                double eyy, double ezz, double *s) {
+  const double exy = 0.5 * (g[1] + g[2]), w = 0.5 * (g[1] - g[2]);
+  const double sxx = s[0], syy = s[1], sxy = s[3], ltr = lam * (exx + eyy + ezz);
+  s[0] = sxx + 2.0 * w * sxy + ltr + G2 * exx;
+  s[1] = syy - 2.0 * w * sxy + ltr + G2 * eyy;
+  s[2] += ltr + G2 * ezz;
+  s[3] = sxy + w * (syy - sxx) + G2 * exy;
+}
+
 // Linear isotropic elasticity in rate form: sigma <- jaumann(sigma) + C : de.
 // Exact for small strain; objective under large rotation.
 class LinearElastic final : public Material {
@@ -12,9 +27,11 @@ public:
   explicit LinearElastic(const ElasticConstants &c) : c_(c) {}
   const char *model() const override { return "linear_elastic"; }
   double wave_modulus() const override { return c_.M(); }
-  // Plane strain written out (the same algebra as jaumann_rotate + elastic_increment on 3x3
-  // tensors, without the temporaries): with spin w = (du/dy - dv/dx)/2,
-  //   sxx += 2 w sxy, syy -= 2 w sxy, sxy += w (syy - sxx), szz unchanged; then + C : de.
+  bool linear_elastic_rate(double &lam, double &G2) const override {
+    lam = c_.lambda();
+    G2 = 2.0 * c_.G();
+    return true;
+  }
   void update_stress(const StressBatch &b) const override {
     const double lam = c_.lambda(), G2 = 2.0 * c_.G();
     for (int k = 0; k < b.n; ++k) {
@@ -27,12 +44,7 @@ public:
         eyy -= b.eigen[3 * p + 1];
         ezz -= b.eigen[3 * p + 2];
       }
-      const double exy = 0.5 * (g[1] + g[2]), w = 0.5 * (g[1] - g[2]);
-      const double sxx = s[0], syy = s[1], sxy = s[3], ltr = lam * (exx + eyy + ezz);
-      s[0] = sxx + 2.0 * w * sxy + ltr + G2 * exx;
-      s[1] = syy - 2.0 * w * sxy + ltr + G2 * eyy;
-      s[2] += ltr + G2 * ezz;
-      s[3] = sxy + w * (syy - sxx) + G2 * exy;
+      elastic_rate_update(lam, G2, g, exx, eyy, ezz, s);
     }
   }
 
