@@ -38,11 +38,7 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   // 1. Particles to grid: mass, momentum, internal and external force (eq. 7-9, 14).
   PetscCall(PetscLogEventBegin(ev_p2g, 0, 0, 0, 0));
   PetscCall(GridGetLocal(g, true, G));
-  // P2G's stencils kept for G2P (USL without APIC only)
-  static std::vector<double> stencils;
-  const bool keep = !sim.set.musl && !P.B;
-  if (keep) stencils.resize(static_cast<size_t>(P.n) * (4 * Shape::NS + 1));
-  p2g<Shape>(P, load, G, nullptr, 0, pshift, keep ? stencils.data() : nullptr);
+  p2g<Shape>(P, load, G, nullptr, 0, pshift);
   if (!sim.traction_idx.empty())
     p2g_traction<Shape>(P, sim.loads, sim.traction_idx, load.factor, G);
   PetscCall(GridRestoreLocal(g, G));
@@ -159,7 +155,6 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   for (size_t m = 0; fuse && m < sim.mats.size(); ++m)
     fuse = sim.mats[m].model->linear_elastic_rate(elastic[2 * m], elastic[2 * m + 1]);
   if (fuse) pp.elastic = elastic.data();
-  if (keep) pp.cache = stencils.data();
   PetscCall(GridGetLocal(g, false, G));
   if (!sim.set.musl) {
     g2p<Shape>(P, G, G1, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);

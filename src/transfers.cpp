@@ -59,44 +59,12 @@ __attribute__((always_inline)) inline void stencil(const GridView &G, const doub
 } // namespace
 
 namespace {
-// P2G's stencil of one particle kept for G2P: the 1D factors (gradients per metre), the nodes
-// touched per direction and the first node's offset into the view's data (the same in G2P's
-// view, and in the interface body's view, which shares its layout).
-template <class Shape> constexpr int CacheWidth = 4 * Shape::NS + 1;
-template <class Shape>
-inline void cache_put(const Stencil<Shape> &S, const GridView &G, double *c) {
-  constexpr int NS = Shape::NS;
-  for (int a = 0; a < NS; ++a) {
-    c[a] = S.wx[a];
-    c[NS + a] = S.dwx[a];
-    c[2 * NS + a] = S.wy[a];
-    c[3 * NS + a] = S.dwy[a];
-  }
-  c[4 * NS] = static_cast<double>((S.node0 - G.data) * 64 + S.nx * 8 + S.ny);
-}
-template <class Shape>
-inline void cache_get(const double *c, const GridView &G, Stencil<Shape> &S) {
-  constexpr int NS = Shape::NS;
-  for (int a = 0; a < NS; ++a) {
-    S.wx[a] = c[a];
-    S.dwx[a] = c[NS + a];
-    S.wy[a] = c[2 * NS + a];
-    S.dwy[a] = c[3 * NS + a];
-  }
-  const long k = static_cast<long>(c[4 * NS]);
-  S.node0 = G.data + k / 64;
-  S.nx = static_cast<int>((k / 8) % 8);
-  S.ny = static_cast<int>(k % 8);
-}
-} // namespace
-
-namespace {
 // Multi: several bodies per node (each particle writes its own body's block, runtime stride);
 // one body keeps the compile-time stride of before (measured: 5-11 % of a step otherwise).
 // Affine: APIC momentum m (w v + B a) (affine.hpp).
 template <class Shape, bool Multi, bool Affine>
 void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
-              PetscInt nidx, const double *pshift, double *cache) {
+              PetscInt nidx, const double *pshift) {
   const int ND = Multi ? G.nd : GridDof::NDOF;
   const PetscInt row = G.gm[0] * ND;
   constexpr bool bodies = Multi;
@@ -108,7 +76,6 @@ void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const 
     stencil<Shape, Affine>(G, P.x + p * DIM, Shape::half(P.lp + p * DIM, P.F + p * DIM * DIM, lb),
                            S);
     if (bodies) S.node0 += P.body[p] * GridDof::NDOF;
-    if (!Affine && cache) cache_put(S, G, cache + p * CacheWidth<Shape>);
     const double m = P.mass[p], V = P.vol[p];
     const double mv0 = m * P.v[p * DIM], mv1 = m * P.v[p * DIM + 1];
     double mB[DIM * DIM] = {0, 0, 0, 0};
@@ -148,16 +115,16 @@ void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const 
 
 template <class Shape>
 void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
-         PetscInt nidx, const double *pshift, double *cache) {
+         PetscInt nidx, const double *pshift) {
   const bool multi = G.nbody > 1, affine = P.B != nullptr;
   if (multi && affine)
-    p2g_impl<Shape, true, true>(P, load, G, idx, nidx, pshift, idx ? nullptr : cache);
+    p2g_impl<Shape, true, true>(P, load, G, idx, nidx, pshift);
   else if (multi)
-    p2g_impl<Shape, true, false>(P, load, G, idx, nidx, pshift, idx ? nullptr : cache);
+    p2g_impl<Shape, true, false>(P, load, G, idx, nidx, pshift);
   else if (affine)
-    p2g_impl<Shape, false, true>(P, load, G, idx, nidx, pshift, idx ? nullptr : cache);
+    p2g_impl<Shape, false, true>(P, load, G, idx, nidx, pshift);
   else
-    p2g_impl<Shape, false, false>(P, load, G, idx, nidx, pshift, idx ? nullptr : cache);
+    p2g_impl<Shape, false, false>(P, load, G, idx, nidx, pshift);
 }
 
 template <class Shape>
@@ -363,7 +330,6 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
   const double ox = G0.origin[0], oy = G0.origin[1];
   const double gd0 = prm.gdir[0], gd1 = prm.gdir[1];
   const double *el = prm.elastic;
-  const double *cache = mode == G2PMode::Fused ? prm.cache : nullptr;
   // the sums in registers (through st they were stored and reloaded every particle: the stores
   // into the particle arrays may alias them); the same order, the same sums
   double c2max = 0, v2max = 0, kinetic = 0, weight_power = 0;
@@ -372,13 +338,9 @@ void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, cons
   for (PetscInt p = 0; p < P.n; ++p) {
     double *x = P.x + p * DIM, *v = P.v + p * DIM;
     const GridView &G = (G1 && P.colour[p] > 0.5) ? *G1 : G0; // interface body field
-    if (!Affine && cache)
-      cache_get(cache + p * CacheWidth<Shape>, G, S); // the body offset included
-    else {
-      double lb[DIM];
-      stencil<Shape, Affine && vel>(G, x, Shape::half(P.lp + p * DIM, P.F + p * DIM * DIM, lb), S);
-      if (bodies) S.node0 += P.body[p] * GridDof::NDOF;
-    }
+    double lb[DIM];
+    stencil<Shape, Affine && vel>(G, x, Shape::half(P.lp + p * DIM, P.F + p * DIM * DIM, lb), S);
+    if (bodies) S.node0 += P.body[p] * GridDof::NDOF;
     double vg0 = 0, vg1 = 0, ag0 = 0, ag1 = 0, L0 = 0, L1 = 0, L2 = 0, L3 = 0;
     double Bn[DIM * DIM] = {0, 0, 0, 0};
     for (int b = 0; b < S.ny; ++b) {
@@ -561,7 +523,7 @@ void grid_velocity(const GridView &G, const FaceBC face[2 * DIM],
   template void p2g_traction<S>(const ParticleView &, const std::vector<ParticleLoad> &,           \
                                 const std::vector<PetscInt> &, double, const GridView &);          \
   template void p2g<S>(const ParticleView &, const Load &, const GridView &, const PetscInt *,     \
-                       PetscInt, const double *, double *);                                        \
+                       PetscInt, const double *);                                                  \
   template void p2g_colour_gradient<S>(const ParticleView &, const PetscInt *, PetscInt,           \
                                        const GridView &);                                          \
   template void g2p_velocity<S>(const ParticleView &, const GridView &, const GridView *,          \

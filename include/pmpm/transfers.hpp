@@ -26,11 +26,9 @@ struct Load {
 // A view with an affine field (P.B, -transfer apic) adds APIC's affine momentum (affine.hpp).
 // pshift (per particle, or null) is added to the in-plane normal stresses of the internal force:
 // F-bar's group pressure (antilock.hpp).
-// cache (or null): each particle's stencil written for g2p (G2PParams::cache), 4 NS + 1 doubles
-// a particle; not with idx, nor with an affine field.
 template <class Shape>
 void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx = nullptr,
-         PetscInt nidx = 0, const double *pshift = nullptr, double *cache = nullptr);
+         PetscInt nidx = 0, const double *pshift = nullptr);
 
 // Interface normals (-interface_normals particles): sum_p V_p c_p grad S_ip / h over body 1, which
 // points out of it (S_i falls away from node i), written over the FEXT slots of the whole view.
@@ -99,9 +97,6 @@ struct G2PParams {
   // writing dudx. Only when every material is LinearElastic and nothing else reads dudx (no
   // F-bar, no eigenstrain): cycle.cpp decides.
   const double *elastic = nullptr;
-  // P2G's stencils (p2g's cache) for g2p to read instead of evaluating the shape again; null:
-  // evaluate. The positions must not have changed since that p2g.
-  const double *cache = nullptr;
 };
 
 struct G2PStats {
