@@ -63,8 +63,13 @@ namespace {
 // one body keeps the compile-time stride of before (measured: 5-11 % of a step otherwise).
 // Affine: APIC momentum m (w v + B a) (affine.hpp).
 template <class Shape, bool Multi, bool Affine>
-void p2g_impl(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
+void p2g_impl(const ParticleView &P, const Load &load_, const GridView &G_, const PetscInt *idx,
               PetscInt nidx, const double *pshift) {
+  // Local copies: the stores into the nodes (double *) may alias the caller's doubles (the grid
+  // spacing, the origin, the load factor), which were then reloaded, and 1 / h divided again,
+  // for every particle; nothing aliases a local (BENCHMARKS.md, "A leaner explicit cycle").
+  const GridView G = G_;
+  const Load load = load_;
   const int ND = Multi ? G.nd : GridDof::NDOF;
   const PetscInt row = G.gm[0] * ND;
   constexpr bool bodies = Multi;
@@ -318,8 +323,13 @@ enum class G2PMode { Fused, Velocity, Kinematics };
 // velocity gradient), then the FLIP/PIC velocity update and/or the kinematics. Affine (APIC,
 // affine.hpp): the velocity is the grid's (PIC, no FLIP part) and B = sum_i w v_i (x_i - x_p)^T.
 template <class Shape, G2PMode mode, bool Multi, bool Affine>
-void g2p_one(const ParticleView &P, const GridView &G0, const GridView *G1, const Grid *grid,
+void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, const Grid *grid,
              const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats *st) {
+  // local copies of the views, as in p2g_impl (the particle stores may alias the caller's)
+  const GridView G0 = G0_;
+  GridView G1v;
+  if (G1_) G1v = *G1_;
+  const GridView *G1 = G1_ ? &G1v : nullptr;
   const int ND = Multi ? G0.nd : GridDof::NDOF;
   constexpr bool vel = mode != G2PMode::Kinematics, kin = mode != G2PMode::Velocity;
   const double dt = prm.dt, pic = prm.pic;

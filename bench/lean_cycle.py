@@ -1,0 +1,135 @@
+#!/usr/bin/python3
+"""A leaner explicit cycle (issue 12): each change to the uGIMP step measured on its own.
+
+    /usr/bin/python3 bench/lean_cycle.py            # ~10 min: builds each revision, BENCHMARKS.md
+    /usr/bin/python3 bench/lean_cycle.py --quick    # 0.1 M particles, 1 run each, no BENCHMARKS.md
+
+Every revision in CHANGES (the commits of the lean-cycle branch, each one change on top of the
+previous, a dropped one followed by its revert) is built once into bench/out/lean-<rev>/ (git
+worktree + cmake, the pmpm target only) and runs the throughput case of bench/run.py's section 2:
+the column at 1,048,576 particles (-cell_size 1/512, -ppc 2, -shape pmpm), 50 steps, 1 rank.
+The runs are interleaved (revision after revision, then again), so each revision sees the same
+machine; each is run --reps times and the fastest `Relaxation` stage of -log_view is kept. The
+machine is shared: the 1-minute load average before each run is printed beside the numbers.
+Memory: peak resident set (GNU time %M) over particles.
+"""
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from benchmarks_md import MPI_ENV, ROOT, publish  # noqa: E402
+from run import parse_log  # noqa: E402
+
+OUT = ROOT / "bench" / "out" / "lean"
+MARK_BEGIN, MARK_END = "<!-- lean_cycle.py begin -->", "<!-- lean_cycle.py end -->"
+
+# (change, revision, kept): each revision is the previous one plus the change
+CHANGES = [
+    ("main before the changes", "3e8830b", True),
+    ("stencil always inlined, G2P's sums in registers, no libm fmax", "4932c04", True),
+    ("uGIMP stencil untrimmed: fixed 3 x 3 loops", "48bc880", False),
+    ("fused linear elastic stress update in G2P (on the first change)", "c51b97b", True),
+    ("branchless uGIMP 1D weights", "8131853", True),
+    ("P2G's stencils kept for G2P (13 doubles a particle)", "fdb7bb4", False),
+]
+
+
+def binary(rev):
+    """Build `rev` once into bench/out/lean-<rev>/; its pmpm path."""
+    d = ROOT / "bench" / "out" / f"lean-{rev}"
+    exe = d / "build" / "pmpm"
+    if exe.exists():
+        return exe
+    if d.exists():
+        subprocess.run(["git", "worktree", "remove", "--force", str(d)], cwd=ROOT)
+        shutil.rmtree(d, ignore_errors=True)
+    subprocess.run(["git", "worktree", "add", "--detach", str(d), rev], cwd=ROOT, check=True,
+                   stdout=subprocess.DEVNULL)
+    subprocess.run(["cmake", "-S", str(d), "-B", str(d / "build"), "-DCMAKE_BUILD_TYPE=Release"],
+                   check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(["cmake", "--build", str(d / "build"), "-j", str(os.cpu_count()), "--target",
+                    "pmpm"], check=True, stdout=subprocess.DEVNULL)
+    return exe
+
+
+def case(quick):
+    h = 0.00625 if quick else 0.001953125
+    return ["-options_file", "options/column.opts", "-column_width", "1.0", "-cell_size", str(h),
+            "-ppc", "2", "-shape", "pmpm", "-max_steps", "50", "-tol", "1e-300", "-quiet",
+            "-log_view"]
+
+
+def run_once(exe, args, out):
+    """One run: (Relaxation seconds, {event: seconds}, peak RSS bytes, particles, load before)."""
+    if out.is_dir():
+        shutil.rmtree(out)
+    load = float(Path("/proc/loadavg").read_text().split()[0])
+    rss_file = out.parent / (out.name + ".rss")
+    cmd = ["/usr/bin/time", "-f", "%M", "-o", str(rss_file), str(exe)] + args + \
+        ["-output_dir", str(out)]
+    p = subprocess.run(cmd, cwd=ROOT, env=MPI_ENV, stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, text=True)
+    if p.returncode != 0:
+        sys.exit(f"failed: {' '.join(cmd)}\n{p.stdout[-2000:]}")
+    stages, events = parse_log(p.stdout)
+    import json
+    with open(out / "summary.json") as f:
+        s = json.load(f)
+    n = s.get("particles") or s.get("n_particles")
+    rss = int(rss_file.read_text().split()[-1]) * 1024
+    return stages["Relaxation"], {k: v["max_s"] for k, v in events.items()}, rss, n, load
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--reps", type=int, default=3)
+    a = ap.parse_args()
+    reps = 1 if a.quick else a.reps
+    OUT.mkdir(parents=True, exist_ok=True)
+    exes = [binary(rev) for _, rev, _ in CHANGES]
+    args = case(a.quick)
+    res = {rev: [] for _, rev, _ in CHANGES}
+    for r in range(reps):
+        for (name, rev, _), exe in zip(CHANGES, exes):
+            res[rev].append(run_once(exe, args, OUT / f"{rev}_{r}"))
+            t, ev, rss, n, load = res[rev][-1]
+            print(f"  {rev} run {r + 1}: {t:.3f} s, load {load:.2f}", flush=True)
+    steps = 50
+    base = min(x[0] for x in res[CHANGES[0][1]])
+    rows = []
+    for name, rev, kept in CHANGES:
+        runs = res[rev]
+        best = min(runs, key=lambda x: x[0])
+        t, ev, rss, n, load = best
+        ms = lambda k: f"{1e3 * ev.get(k, 0.0) / steps:.1f}"  # noqa: E731
+        rows.append([name, f"`{rev}`", "kept" if kept else "dropped", f"{t:.3f}",
+                     f"**{n * steps / t / 1e6:.2f}**", f"{base / t:.2f}x", ms("P2G"), ms("G2P"),
+                     ms("StressUpdate"), f"{min(x[2] for x in runs) / n:.0f}",
+                     f"{max(x[0] for x in runs) / t - 1:.0%} ({len(runs)} runs)",
+                     ", ".join(f"{x[4]:.1f}" for x in runs)])
+    hdr = ["change", "commit", "kept", "Relaxation (s, fastest)", "M updates/s/core",
+           "vs main", "P2G ms/step", "G2P ms/step", "StressUpdate ms/step",
+           "peak RSS bytes/particle", "spread", "load average before each run"]
+    n = res[CHANGES[0][1]][0][3]
+    md = [MARK_BEGIN, "## A leaner explicit cycle (bench/lean_cycle.py)", "",
+          f"The throughput case of section 2 (column, {n:,} particles, uGIMP `-shape pmpm`, "
+          f"-ppc 2, {steps} steps, 1 rank), one row per revision of the lean-cycle branch: each "
+          "row is the row above plus one change (a dropped change is reverted before the next). "
+          f"Fastest of {reps} interleaved runs. The machine (2 cores) was shared with other "
+          "runs: the load average is beside the numbers; compare rows with each other, not "
+          "with section 2's quiet-machine figures.", "",
+          "| " + " | ".join(hdr) + " |", "|" + "---|" * len(hdr)]
+    md += ["| " + " | ".join(r) + " |" for r in rows]
+    md += ["", "<details><summary>Command (each revision's binary)</summary>", "", "```",
+           "bench/out/lean-<rev>/build/pmpm " + " ".join(args) + " -output_dir ...", "```",
+           "</details>", "", MARK_END]
+    publish("\n".join(md) + "\n", OUT / "LEAN.md", MARK_BEGIN, MARK_END, not a.quick)
+
+
+if __name__ == "__main__":
+    main()
