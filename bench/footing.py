@@ -41,7 +41,7 @@ SOILS = {
 VARIANTS = {
     "F-bar": ["-fbar", "1", "-fbar_pressure", "particle"],
     "F-bar, cell pressure": ["-fbar", "1", "-fbar_pressure", "cell"],
-    "no F-bar": ["-fbar", "0"],
+    "no F-bar": ["-fbar", "0", "-fbar_pressure", "particle"],
 }
 
 
