@@ -199,6 +199,8 @@ inline ReturnResult drucker_prager_return(const DruckerPragerParams &prm, Mat3 &
 //             e = xi^2 H / (K eta etabar + xi^2 H) (= 1 - K eta etabar / denominator); 0 when the
 //             apex is fixed (psi = 0 and H = 0: p = xi c_n / eta) or clamped to the cut-off.
 //             D : C = K (1 - K eta etabar / (K eta etabar + xi^2 H)) 1 (x) 1, no deviatoric part.
+// A trial stress on the cone to round-off (kOnSurface; the return leaves it elastic) takes the
+// cone's derivative with dgamma = 0, the loading side (as von_mises_return_derivative).
 inline ReturnDerivative drucker_prager_return_derivative(const DruckerPragerParams &prm,
                                                          const DPCoefficients &k,
                                                          const Mat3 &sigma_tr, double eps_p) {
@@ -206,9 +208,15 @@ inline ReturnDerivative drucker_prager_return_derivative(const DruckerPragerPara
   Mat3 sig = sigma_tr;
   double ep = eps_p;
   const ReturnResult r = drucker_prager_return(prm, k, sig, ep);
-  if (!r.yielded) return D;
   const double G = prm.el.G(), K = prm.el.K(), H = prm.hardening, sq2 = std::sqrt(2.0);
   const double eta = k.eta, xi = k.xi, etabar = k.etabar;
+  if (!r.yielded) { // elastic, unless on the cone to round-off (see kOnSurface): dgamma = 0
+    const double p_tr = stress_inv::mean(sigma_tr);
+    const double q_tr = stress_inv::sqrt_j2(stress_inv::deviator(sigma_tr));
+    const double scale = xi * (prm.cohesion + H * eps_p) + std::fabs(eta * p_tr);
+    if (!(q_tr > 0.0 && q_tr + eta * p_tr - xi * (prm.cohesion + H * eps_p) >= -kOnSurface * scale))
+      return D;
+  }
   if (r.apex) {
     const double denom = K * eta * etabar + xi * xi * H;
     const bool clamped = r.tension; // the apex path sets tension only when p was clamped to t
