@@ -191,6 +191,29 @@ if np_ == 1:
              f"{sr['results'][key]:.4g})", abs(s["results"][key] / sr["results"][key] - 1), bound)
     convergence("plastic landfill", log, 4)
 
+# the strip footing (options/footing.opts, von Mises, Prandtl's q_u = (2 + pi) c) in one stage: a
+# single pressure (-footing_pressures q: no later stages, which Newton does not run yet) and
+# without F-bar (which Newton does not have yet), so the locked discretisation of the footing
+# test's "without F-bar" case (relaxation holds 1.05 q_u and collapses at 1.15 q_u). At 0.95 q_u
+# Newton holds with relaxation's settlement (measured 0.06 %, bound 2 %); at 1.15 q_u its load
+# steps stop converging (the mesh's collapse load, 1.10 q_u measured), so the run ends with the
+# error naming the load factor. 1 rank.
+if np_ == 1:
+    FOOT = ["-options_file", "options/footing.opts", "-fbar", "0"]
+    run(exe, np_, FOOT + ["-footing_pressures", "48846", "-solver", "newton"], f"{out}/footing")
+    run(exe, np_, FOOT + ["-footing_pressures", "48846"], f"{out}/footing_relax")
+    s, sr = summary(f"{out}/footing"), summary(f"{out}/footing_relax")
+    st, sst = s["results"]["stages"][0], sr["results"]["stages"][0]
+    c.check("footing at 0.95 q_u holds under Newton", s["converged"] is True and st["holds"])
+    c.le(f"footing at 0.95 q_u: settlement against relaxation ({st['settlement']:.5g}, "
+         f"{sst['settlement']:.5g} m)", abs(st["settlement"] / sst["settlement"] - 1), 0.02)
+    code, log = run(exe, np_, FOOT + ["-footing_pressures", "59129", "-solver", "newton",
+                                      "-newton_max_cuts", "2"], f"{out}/footing_collapse",
+                    expect_ok=False)
+    m = re.search(r"load step to load factor ([0-9.]+) did not converge", log)
+    c.check("footing at 1.15 q_u: Newton stops (collapse)", code != 0 and m is not None,
+            f"(exit {code}, load factor {m.group(1) if m else None})")
+
 # the assembled plastic Jacobian against PETSc's finite differences on a coarse column
 for name, mat, _, _ in CASES[1:]:
     _, log = run(exe, np_, COLUMN + mat + ["-cell_size", "0.125", "-newton_load_steps", "3",
