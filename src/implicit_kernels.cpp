@@ -72,11 +72,17 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
 //   linear elastic:  P = J s' f^-T, ds' = dW s - s dW + lambda tr(dG) I + 2 mu sym(dG),
 //                    dW = skew(dG) (the Jaumann update is linear in G; s the committed stress)
 //                    dP = J (tr(f^-1 dG) s' + ds' - s' f^-T dG^T) f^-T
+//   plastic (von Mises, Drucker-Prager): s' = return(s_tr), s_tr = s + W s - s W + C : sym(G)
+//                    (3 x 3: sigma_zz is part of the trial state and of the return), so
+//                    ds' = D : ds_tr with D the return's derivative at s_tr (ReturnDerivative),
+//                    ds_tr = dW s - s dW + lambda tr(dG) I + 2 mu sym(dG); dP as above
 //   neo-Hookean:     P = tau f^-T / J^n, tau = mu (B - I) + lambda ln(J_tot) I, F_tot = f F^n
 //                    dtau = mu (dF F_tot^T + F_tot dF^T) + lambda tr(f^-1 dG) I, dF = dG F^n
 //                    dP = (dtau - tau f^-T dG^T) f^-T / J^n
-void piola_tangent(TangentKind kind, const ElasticConstants &el, const double *G,
-                   const double *s_old, const double *s_new, const double *Fn, double *A) {
+void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
+                   const double *s_new, const double *Fn, double eps_p, double *A) {
+  const TangentKind kind = tm.kind;
+  const ElasticConstants &el = tm.el;
   const MatN I = MatN::Identity();
   const MatN f = I + mat_of(G), fi = f.inverse(), fiT = fi.transpose();
   const double J = f.determinant(), lam = el.lambda(), mu = el.G();
@@ -84,6 +90,18 @@ void piola_tangent(TangentKind kind, const ElasticConstants &el, const double *G
   const MatN Fo = mat_of(Fn), Ft = f * Fo;
   const double Jn = Fo.determinant();
   const MatN tau = mu * (Ft * Ft.transpose() - I) + lam * std::log(Ft.determinant()) * I;
+  const bool plastic = kind == TangentKind::VonMises || kind == TangentKind::DruckerPrager;
+  ReturnDerivative D;
+  Mat3 so3 = Mat3::Zero();
+  if (plastic) { // the trial stress exactly as predictor_corrector forms it
+    so3 = stress_to_tensor(s_old);
+    Mat3 de, dw;
+    strain_and_spin(G, de, dw);
+    const Mat3 s_tr = jaumann_rotate(so3, dw) + elastic_increment(el, de);
+    D = kind == TangentKind::VonMises
+            ? von_mises_return_derivative(tm.vm, s_tr, eps_p)
+            : drucker_prager_return_derivative(tm.dp, tm.dpk, s_tr, eps_p);
+  }
   for (int b = 0; b < DIM; ++b)
     for (int l = 0; l < DIM; ++l) {
       MatN dG = MatN::Zero();
@@ -94,6 +112,15 @@ void piola_tangent(TangentKind kind, const ElasticConstants &el, const double *G
         const MatN dF = dG * Fo;
         const MatN dtau = mu * (dF * Ft.transpose() + Ft * dF.transpose()) + lam * dtr * I;
         dP = (dtau - tau * fiT * dG.transpose()) * fiT / Jn;
+      } else if (plastic) {
+        double g[DIM * DIM] = {0, 0, 0, 0};
+        g[b * DIM + l] = 1.0;
+        Mat3 de, dw;
+        strain_and_spin(g, de, dw);
+        const Mat3 ds3 = D.apply(dw * so3 - so3 * dw + elastic_increment(el, de));
+        MatN ds;
+        ds << ds3(0, 0), ds3(0, 1), ds3(1, 0), ds3(1, 1);
+        dP = J * (dtr * sn + ds - sn * fiT * dG.transpose()) * fiT;
       } else {
         const MatN dW = 0.5 * (dG - dG.transpose()), de = 0.5 * (dG + dG.transpose());
         const MatN ds = dW * so - so * dW + lam * dG.trace() * I + 2.0 * mu * de;

@@ -34,13 +34,13 @@ struct NewtonSolver {
   Vec Uloc = nullptr, Rloc = nullptr, maskL = nullptr;
   PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0}, s[DIM] = {0, 0}, m[DIM] = {0, 0};
   PetscInt load_steps = 10, max_cuts = 6, max_equilibrium = 10;
-  double cell_fraction = 0;      // -newton_cell_fraction: largest |du| / h of a load step (0: off)
-  double frac = 0;               // the last solve's max |du| / h over the free dofs
-  bool atol_given = false;       // -snes_atol given: keep it; else set per step from the load
-  double lambda = 0;             // load factor of the current solve
-  double kref = 1;               // diagonal of held and unsupported dofs (Pa: the stiffness scale)
-  std::vector<TangentKind> kind; // per material
-  PetscInt width = 2;            // the solve's stencil width (the shape's support)
+  double cell_fraction = 0; // -newton_cell_fraction: largest |du| / h of a load step (0: off)
+  double frac = 0;          // the last solve's max |du| / h over the free dofs
+  bool atol_given = false;  // -snes_atol given: keep it; else set per step from the load
+  double lambda = 0;        // load factor of the current solve
+  double kref = 1;          // diagonal of held and unsupported dofs (Pa: the stiffness scale)
+  std::vector<TangentModel> model; // per material: what its consistent tangent needs
+  PetscInt width = 2;              // the solve's stencil width (the shape's support)
   std::vector<double> G, Fnew, snew, epsp, Pk, blocks;
 };
 
@@ -167,8 +167,8 @@ template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
   PetscCall(TrialState<Shape>(ns, U, P));
   for (PetscInt p = 0; p < P.n; ++p) {
     const PetscInt mat = P.mat[p];
-    piola_tangent(ns.kind[mat], sim.mats[mat].el, &ns.G[p * DIM * DIM], P.stress + p * NSTRESS,
-                  &ns.snew[p * NSTRESS], P.F + p * DIM * DIM, A);
+    piola_tangent(ns.model[mat], &ns.G[p * DIM * DIM], P.stress + p * NSTRESS,
+                  &ns.snew[p * NSTRESS], P.F + p * DIM * DIM, P.eps_p[p], A);
     weights<Shape>(P.x + p * DIM, P.lp + p * DIM, sim.grid.origin, sim.grid.h, W);
     particle_stiffness<Shape>(W, P.vol[p], A, K);
     add_particle_blocks<Shape>(W, K, NB);
@@ -471,14 +471,27 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver &ns) {
              fix);
   PetscCheck(sim.set.restart.empty() && sim.set.checkpoint_every == 0, sim.comm, PETSC_ERR_SUP,
              "-solver newton does not support -restart or -checkpoint_every yet%s", fix);
-  ns.kind.assign(sim.mats.size(), TangentKind::None);
+  ns.model.assign(sim.mats.size(), TangentModel{});
   for (size_t k = 0; k < sim.mats.size(); ++k) {
     const Material &m = *sim.mats[k].model;
-    if (!std::strcmp(m.model(), "linear_elastic")) ns.kind[k] = TangentKind::LinearElastic;
-    if (!std::strcmp(m.model(), "neo_hookean")) ns.kind[k] = TangentKind::NeoHookean;
-    PetscCheck(ns.kind[k] != TangentKind::None, sim.comm, PETSC_ERR_SUP,
+    TangentModel &tm = ns.model[k];
+    tm.el = sim.mats[k].el;
+    if (!std::strcmp(m.model(), "linear_elastic")) tm.kind = TangentKind::LinearElastic;
+    if (!std::strcmp(m.model(), "neo_hookean")) tm.kind = TangentKind::NeoHookean;
+    if (const auto *vm = dynamic_cast<const VonMises *>(&m)) {
+      tm.kind = TangentKind::VonMises;
+      tm.vm = vm->params();
+      tm.el = tm.vm.el;
+    }
+    if (const auto *dp = dynamic_cast<const DruckerPrager *>(&m)) {
+      tm.kind = TangentKind::DruckerPrager;
+      tm.dp = dp->params();
+      tm.dpk = dp->coefficients();
+      tm.el = tm.dp.el;
+    }
+    PetscCheck(tm.kind != TangentKind::None, sim.comm, PETSC_ERR_SUP,
                "-solver newton does not support -mat_%s_model %s yet (no consistent tangent; "
-               "linear_elastic and neo_hookean have one)%s",
+               "linear_elastic, neo_hookean, von_mises and drucker_prager have one)%s",
                sim.mats[k].name.c_str(), m.model(), fix);
   }
   PetscFunctionReturn(0);

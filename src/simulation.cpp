@@ -101,6 +101,9 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                              "to the averaged volume change: B-bar; needed for dilatant flow)",
                              nullptr, FbarPressureNames, (PetscEnum)s.fbar_pressure,
                              (PetscEnum *)&s.fbar_pressure, nullptr));
+  PetscCheck(s.fbar || s.fbar_pressure == FbarPressure::Particle, comm, PETSC_ERR_USER_INPUT,
+             "-fbar_pressure cell acts on F-bar's groups: add -fbar, or set -fbar_pressure "
+             "particle to run without F-bar");
   PetscBool stage_end = s.checkpoint_stage_end ? PETSC_TRUE : PETSC_FALSE;
   char restart[PETSC_MAX_PATH_LEN] = "";
   PetscCall(PetscOptionsInt("-checkpoint_every",

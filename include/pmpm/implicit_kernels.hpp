@@ -15,6 +15,8 @@
 // internal force, so equilibrium at the start of a step is relaxation's equilibrium.
 #pragma once
 #include "pmpm/material.hpp"
+#include "pmpm/materials/drucker_prager.hpp"
+#include "pmpm/materials/von_mises.hpp"
 #include "pmpm/particles.hpp"
 #include "pmpm/shape.hpp"
 
@@ -33,7 +35,23 @@ struct NodalView {
 };
 
 // The materials that have a consistent tangent (others are refused by -solver newton).
-enum class TangentKind { None = 0, LinearElastic = 1, NeoHookean = 2 };
+enum class TangentKind {
+  None = 0,
+  LinearElastic = 1,
+  NeoHookean = 2,
+  VonMises = 3,
+  DruckerPrager = 4
+};
+
+// What the tangent needs of a material: its kind, elastic constants and, for the plastic ones,
+// the return map's parameters (the tangent differentiates that same return).
+struct TangentModel {
+  TangentKind kind = TangentKind::None;
+  ElasticConstants el;
+  VonMisesParams vm;      // kind VonMises
+  DruckerPragerParams dp; // kind DruckerPrager
+  DPCoefficients dpk{0, 0, 0};
+};
 
 // G_p = sum_i (mask_i du_i) (x) grad S_i(x_p), row-major (G[a * DIM + j] = d du_a / d x_j);
 // mask is 1 on free dofs and 0 on held or unsupported ones (their du does not deform anything).
@@ -52,9 +70,12 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
 
 // A = dP / dG (DIM^2 x DIM^2, A[(a DIM + j) DIM^2 + (b DIM + l)] = dP_aj / dG_bl) of one particle,
 // exact for the material's update: linear elastic (Jaumann rate, the explicit update with
-// dudx = G) or neo-Hookean. s_old: committed stress; s_new: trial stress at G; Fn: committed F.
-void piola_tangent(TangentKind kind, const ElasticConstants &el, const double *G,
-                   const double *s_old, const double *s_new, const double *Fn, double *A);
+// dudx = G), neo-Hookean, or the rate-form plastic models (the same elastic predictor followed
+// by the return map, differentiated through it: the consistent tangent). s_old: committed
+// stress; s_new: the stress at G (after the return); Fn: committed F; eps_p: committed
+// equivalent plastic strain (plastic models only).
+void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
+                   const double *s_new, const double *Fn, double eps_p, double *A);
 
 // One particle's stiffness over its support: the NN nodes of weights() (node k at base +
 // (k % NS, k / NS)); K[(k DIM + a) (NN DIM) + (m DIM + b)] = V sum_jl dS_k/dx_j A_ajbl dS_m/dx_l.

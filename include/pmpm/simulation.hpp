@@ -25,11 +25,11 @@ inline constexpr const char *InertiaScalingNames[] = {"none", "wave_speed", "Ine
 // The equilibrium solver of every stage: explicit dynamic relaxation (relaxation.cpp) or Newton
 // load steps on PETSc SNES (newton.cpp).
 enum class Solver { Relaxation = 0, Newton = 1 };
+inline constexpr const char *SolverNames[] = {"relaxation", "newton", "Solver", "SOLVER_", nullptr};
 // -fbar_pressure: the internal force's pressure under F-bar, the particle's own or its group's
 enum class FbarPressure { Particle = 0, Cell = 1 };
 inline constexpr const char *FbarPressureNames[] = {"particle", "cell", "FbarPressure",
                                                     "FBAR_PRESSURE_", nullptr};
-inline constexpr const char *SolverNames[] = {"relaxation", "newton", "Solver", "SOLVER_", nullptr};
 
 // Options every scene accepts (the interface contract in README.md).
 struct Settings {

@@ -2,12 +2,20 @@
 //   piola_tangent: dP/dG against central differences of the material's own update followed by
 //   implicit_piola, at random G (|G| up to 0.1), committed stress and F, for linear elastic
 //   (Jaumann rate) and neo-Hookean: the consistent tangent of the residual Newton solves;
+//   the same for von Mises (elastic, perfectly plastic, hardening, softening) and Drucker-Prager
+//   (elastic, cone associated and not, with and without hardening, apex with hardening or
+//   dilation, the fixed apex, tension cut-off and its corner with the cone): each return branch
+//   forced by the parameters and the random state, checked to 1e-6 of the tangent's largest
+//   entry, the branch the same at G and G +- eps (else the trial is skipped, and counted);
 //   implicit_gradient: a linear nodal displacement u_i = A x_i gives G = A at every particle
 //   (linear completeness of both shapes), and implicit_internal_force of a uniform P sums to zero
 //   over the nodes (the gradients of a partition of unity sum to zero).
 #include "check.hpp"
 #include "pmpm/implicit_kernels.hpp"
 #include "pmpm/materials/elastic.hpp"
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <vector>
 
 using namespace pmpm;
@@ -16,8 +24,8 @@ namespace {
 
 // P(G) of one particle by the material's update on copies and implicit_piola.
 void piola_of(const Material &m, const double *G, const double *s_old, const double *Fn, double *P,
-              double *s_new) {
-  double s[NSTRESS], F[4], ep = 0;
+              double *s_new, double ep = 0) {
+  double s[NSTRESS], F[4];
   for (int k = 0; k < NSTRESS; ++k) s[k] = s_old[k];
   implicit_deformation(1, G, Fn, F);
   const int idx = 0;
@@ -51,7 +59,10 @@ void test_tangent(TangentKind kind) {
       for (double &s : s_old) s = 0.02 * (rng.next() - 0.5);
     }
     piola_of(m, G, s_old, Fn, P, s_new);
-    piola_tangent(kind, el, G, s_old, s_new, Fn, A);
+    TangentModel tm;
+    tm.kind = kind;
+    tm.el = el;
+    piola_tangent(tm, G, s_old, s_new, Fn, 0.0, A);
     // central differences: truncation eps^2 |P'''| ~ 1e-12, round-off 1e-16 / eps ~ 1e-10 for
     // P and A of order 1; 1e-7 leaves a margin of 1000 and catches any missing term (>= 1e-3)
     const double eps = 1e-6;
@@ -64,6 +75,138 @@ void test_tangent(TangentKind kind) {
       piola_of(m, Gm, s_old, Fn, Pm, nullptr);
       for (int r = 0; r < 4; ++r) CHECK_CLOSE(A[r * 4 + q], (Pp[r] - Pm[r]) / (2 * eps), 1e-7);
     }
+  }
+}
+
+// The return branch of a plastic material's update at G: 0 elastic, 1 von Mises / DP cone,
+// 2 DP cut-off, 3 DP corner (cone and cut-off), 4 DP apex, 5 DP apex clamped to the cut-off.
+int branch_of(const TangentModel &tm, const double *G, const double *s_old, double ep) {
+  Mat3 de, dw;
+  strain_and_spin(G, de, dw);
+  Mat3 s = jaumann_rotate(stress_to_tensor(s_old), dw) + elastic_increment(tm.el, de);
+  const ReturnResult r = tm.kind == TangentKind::VonMises
+                             ? von_mises_return(tm.vm, s, ep)
+                             : drucker_prager_return(tm.dp, tm.dpk, s, ep);
+  if (!r.yielded) return 0;
+  if (r.apex) return r.tension ? 5 : 4;
+  if (r.tension) return r.dgamma > 0 ? 3 : 2;
+  return 1;
+}
+
+// One plastic case: random G (|G_ij| <= g), committed stress s0 + random (+- ds), committed
+// eps_p in [0, 0.02]; trials at the wanted branch are checked until `want` of them passed the
+// branch test at G +- eps (at most 5000 draws); at least `want` must be checked.
+void test_plastic_case(const char *what, const Material &m, const TangentModel &tm, int branch,
+                       double g, const double *s0, double ds, unsigned seed, int want = 20) {
+  pmpm_test::Lcg rng(seed);
+  int checked = 0, skipped = 0;
+  double worst = 0;
+  for (int draw = 0; draw < 5000 && checked < want; ++draw) {
+    double G[4], Fn[4] = {1, 0, 0, 1}, s_old[NSTRESS], s_new[NSTRESS], P[4], A[16];
+    for (double &x : G) x = g * (2 * rng.next() - 1);
+    for (double &f : Fn) f += 0.1 * (rng.next() - 0.5);
+    for (int k = 0; k < NSTRESS; ++k) s_old[k] = s0[k] + ds * (2 * rng.next() - 1);
+    const double ep = 0.02 * rng.next();
+    if (branch_of(tm, G, s_old, ep) != branch) continue;
+    // central differences: the return's third derivatives scale as 1 / q_tr^2 (q_tr >= 1e-3
+    // here), eps^2 / q_tr^2 <= 1e-8 of the tangent; round-off 1e-16 |P| / eps ~ 1e-10
+    const double eps = 1e-7;
+    bool same = true;
+    double Afd[16];
+    for (int q = 0; q < 4 && same; ++q) {
+      double Gp[4], Gm[4], Pp[4], Pm[4];
+      for (int k = 0; k < 4; ++k) Gp[k] = Gm[k] = G[k];
+      Gp[q] += eps;
+      Gm[q] -= eps;
+      same = branch_of(tm, Gp, s_old, ep) == branch && branch_of(tm, Gm, s_old, ep) == branch;
+      piola_of(m, Gp, s_old, Fn, Pp, nullptr, ep);
+      piola_of(m, Gm, s_old, Fn, Pm, nullptr, ep);
+      for (int r = 0; r < 4; ++r) Afd[r * 4 + q] = (Pp[r] - Pm[r]) / (2 * eps);
+    }
+    if (!same) {
+      ++skipped;
+      continue;
+    }
+    piola_of(m, G, s_old, Fn, P, s_new, ep);
+    piola_tangent(tm, G, s_old, s_new, Fn, ep, A);
+    double scale = 0;
+    for (double a : Afd) scale = std::fmax(scale, std::fabs(a));
+    for (int k = 0; k < 16; ++k) {
+      CHECK_CLOSE(A[k], Afd[k], 1e-6 * scale);
+      worst = std::fmax(worst, std::fabs(A[k] - Afd[k]) / scale);
+    }
+    ++checked;
+  }
+  CHECK(checked >= want);
+  std::printf("  %-44s branch %d: %2d states, %d skipped at a branch edge, worst %.1e\n", what,
+              branch, checked, skipped, worst);
+}
+
+void test_plastic_tangents() {
+  const double INF = std::numeric_limits<double>::infinity();
+  const ElasticConstants el{1.0, 0.3}; // E = 1, G = 0.385, K = 0.833
+  // von Mises: the trial deviator of |G| <= 0.05 reaches q_tr ~ 0.03-0.1
+  const double zero[NSTRESS] = {0, 0, 0, 0};
+  struct VmCase {
+    const char *what;
+    double sy, H;
+    int branch;
+  } vm_cases[] = {{"von Mises elastic", 1.0, 0.0, 0},
+                  {"von Mises perfectly plastic", 0.01, 0.0, 1},
+                  {"von Mises hardening H = 0.2 E", 0.01, 0.2, 1},
+                  {"von Mises softening H = -0.05 E", 0.02, -0.05, 1}};
+  unsigned seed = 101;
+  for (const VmCase &c : vm_cases) {
+    VonMisesParams prm;
+    prm.el = el;
+    prm.sigma_y0 = c.sy;
+    prm.hardening = c.H;
+    VonMises m(prm);
+    TangentModel tm;
+    tm.kind = TangentKind::VonMises;
+    tm.el = el;
+    tm.vm = prm;
+    test_plastic_case(c.what, m, tm, c.branch, 0.05, zero, 0.01, seed++);
+  }
+  // Drucker-Prager around a committed compressive state p = -0.05 (cone, elastic), or a
+  // tensile trial (apex, cut-off, corner)
+  const double comp[NSTRESS] = {-0.05, -0.05, -0.05, 0};
+  const double tens[NSTRESS] = {0.02, 0.02, 0.02, 0};
+  struct DpCase {
+    const char *what;
+    double c, phi, psi, H, t;
+    DPMatch match;
+    int branch;
+    const double *s0;
+    double g;
+  } dp_cases[] = {
+      {"Drucker-Prager elastic", 1.0, 30, 0, 0, INF, DPMatch::Outer, 0, comp, 0.02},
+      {"DP cone, associated, H = 0", 0.005, 30, 30, 0, INF, DPMatch::Outer, 1, comp, 0.05},
+      {"DP cone, psi = 5 deg, H = 0.1 E", 0.005, 30, 5, 0.1, INF, DPMatch::Inner, 1, comp, 0.05},
+      {"DP cone, psi = 0, H = 0, plane-strain match", 0.005, 35, 0, 0, INF, DPMatch::PlaneStrain, 1,
+       comp, 0.05},
+      {"DP apex, associated, H = 0", 0.001, 30, 30, 0, INF, DPMatch::Outer, 4, tens, 0.01},
+      {"DP apex, psi = 0, H = 0.1 E", 0.001, 30, 0, 0.1, INF, DPMatch::Outer, 4, tens, 0.01},
+      {"DP apex fixed (psi = 0, H = 0)", 0.001, 30, 0, 0, INF, DPMatch::Outer, 4, tens, 0.01},
+      {"DP apex clamped to the cut-off", 0.001, 30, 0, 0.1, 0.005, DPMatch::Outer, 5, tens, 0.002},
+      {"DP tension cut-off", 0.05, 30, 10, 0, 0.005, DPMatch::Outer, 2, tens, 0.01},
+      {"DP corner cone / cut-off", 0.01, 30, 10, 0.1, 0.005, DPMatch::Outer, 3, tens, 0.03}};
+  for (const DpCase &c : dp_cases) {
+    DruckerPragerParams prm;
+    prm.el = el;
+    prm.cohesion = c.c;
+    prm.phi_deg = c.phi;
+    prm.psi_deg = c.psi;
+    prm.hardening = c.H;
+    prm.tension_cutoff = c.t;
+    prm.match = c.match;
+    DruckerPrager m(prm);
+    TangentModel tm;
+    tm.kind = TangentKind::DruckerPrager;
+    tm.el = el;
+    tm.dp = prm;
+    tm.dpk = dp_coefficients(prm);
+    test_plastic_case(c.what, m, tm, c.branch, c.g, c.s0, 0.01, seed++);
   }
 }
 
@@ -117,6 +260,7 @@ template <class Shape> void test_completeness() {
 int main() {
   test_tangent(TangentKind::LinearElastic);
   test_tangent(TangentKind::NeoHookean);
+  test_plastic_tangents();
   test_completeness<LinearShape>();
   test_completeness<UGIMPShape>();
   return pmpm_test::report("implicit");

@@ -183,6 +183,69 @@ inline ReturnResult drucker_prager_return(const DruckerPragerParams &prm, Mat3 &
   return drucker_prager_return(prm, dp_coefficients(prm), sigma, eps_p);
 }
 
+// d sigma / d sigma_tr of drucker_prager_return at the trial stress sigma_tr and the committed
+// eps_p, branch by branch (the branch is the return map's own, read from its ReturnResult; de
+// Souza Neto et al. 2008 box 8.7 written on the trial stress instead of the trial strain). With
+// n = s_tr / |s_tr|, q_tr = sqrt(J2_tr) = |s_tr| / sqrt2, d q_tr = n : ds / sqrt2,
+// d p_tr = tr(ds) / 3 and ReturnDerivative's form a dev + b n n: + c n tr/3 + d I n: + e I tr/3:
+//   elastic : a = e = 1
+//   cone    : A = G + K eta etabar + xi^2 H, d dgamma = (d q_tr + eta d p_tr) / A,
+//             sigma = (q / q_tr) s_tr + p I, q = q_tr - G dgamma, p = p_tr - K etabar dgamma:
+//             a = q / q_tr, b = G (dgamma / q_tr - 1 / A), c = -sqrt2 G eta / A,
+//             d = -K etabar / (sqrt2 A), e = 1 - K eta etabar / A
+//   cut-off : sigma = s_tr + t I: a = 1
+//   corner  : A = G + xi^2 H, d dgamma = d q_tr / A: a = q / q_tr, b = G (dgamma / q_tr - 1 / A)
+//   apex    : sigma = p I, p = p_tr - K etabar (eta p_tr - xi c_n) / (K eta etabar + xi^2 H):
+//             e = xi^2 H / (K eta etabar + xi^2 H) (= 1 - K eta etabar / denominator); 0 when the
+//             apex is fixed (psi = 0 and H = 0: p = xi c_n / eta) or clamped to the cut-off.
+//             D : C = K (1 - K eta etabar / (K eta etabar + xi^2 H)) 1 (x) 1, no deviatoric part.
+// A trial stress on the cone to round-off (kOnSurface; the return leaves it elastic) takes the
+// cone's derivative with dgamma = 0, the loading side (as von_mises_return_derivative).
+inline ReturnDerivative drucker_prager_return_derivative(const DruckerPragerParams &prm,
+                                                         const DPCoefficients &k,
+                                                         const Mat3 &sigma_tr, double eps_p) {
+  ReturnDerivative D;
+  Mat3 sig = sigma_tr;
+  double ep = eps_p;
+  const ReturnResult r = drucker_prager_return(prm, k, sig, ep);
+  const double G = prm.el.G(), K = prm.el.K(), H = prm.hardening, sq2 = std::sqrt(2.0);
+  const double eta = k.eta, xi = k.xi, etabar = k.etabar;
+  if (!r.yielded) { // elastic, unless on the cone to round-off (see kOnSurface): dgamma = 0
+    const double p_tr = stress_inv::mean(sigma_tr);
+    const double q_tr = stress_inv::sqrt_j2(stress_inv::deviator(sigma_tr));
+    const double scale = xi * (prm.cohesion + H * eps_p) + std::fabs(eta * p_tr);
+    if (!(q_tr > 0.0 && q_tr + eta * p_tr - xi * (prm.cohesion + H * eps_p) >= -kOnSurface * scale))
+      return D;
+  }
+  if (r.apex) {
+    const double denom = K * eta * etabar + xi * xi * H;
+    const bool clamped = r.tension; // the apex path sets tension only when p was clamped to t
+    D.a = 0.0;
+    D.e = denom > 0.0 && !clamped ? xi * xi * H / denom : 0.0;
+    return D;
+  }
+  if (r.tension && r.dgamma == 0.0) { // cut-off alone
+    D.e = 0.0;
+    return D;
+  }
+  const Mat3 s_tr = stress_inv::deviator(sigma_tr);
+  const double norm = s_tr.norm(), q_tr = norm / sq2, q = q_tr - G * r.dgamma;
+  D.n = s_tr / norm;
+  D.a = q / q_tr;
+  if (r.tension) { // corner of the cone and the cut-off: p = t
+    const double A = G + xi * xi * H;
+    D.b = G * (r.dgamma / q_tr - 1.0 / A);
+    D.e = 0.0;
+    return D;
+  }
+  const double A = G + K * eta * etabar + xi * xi * H; // smooth part of the cone
+  D.b = G * (r.dgamma / q_tr - 1.0 / A);
+  D.c = -sq2 * G * eta / A;
+  D.d = -K * etabar / (sq2 * A);
+  D.e = 1.0 - K * eta * etabar / A;
+  return D;
+}
+
 // Hypoelastic-plastic Drucker-Prager material: Jaumann-rotate the old stress, add the elastic
 // increment C:de (trial), then return (same as LinearElastic plus the return map).
 class DruckerPrager final : public Material {

@@ -38,6 +38,33 @@ inline ReturnResult von_mises_return(const VonMisesParams &prm, Mat3 &sigma, dou
   return r;
 }
 
+// d sigma / d sigma_tr of von_mises_return at the trial stress sigma_tr and the committed eps_p
+// (the consistent tangent, Simo & Hughes 1998 box 3.2; de Souza Neto et al. 2008 eq. 7.120):
+// elastic: the identity; plastic, with n = s_tr / |s_tr| and dgamma = Phi_tr / (3G + H):
+//   D : ds = (1 - 3G dgamma / q_tr) dev(ds) - 3G (1 / (3G + H) - dgamma / q_tr) n (n : ds)
+//            + I tr(ds) / 3,
+// so that D : C = C - 6G^2 dgamma / q_tr I_dev + 6G^2 (dgamma / q_tr - 1 / (3G + H)) n (x) n.
+// A trial stress on the yield surface (Phi_tr within kOnSurface of sigma_y: a particle that
+// yielded in the last load step, at the next one's start) takes the loading side's derivative,
+// dgamma = 0 (the return is not differentiable there; this is the continuum tangent).
+inline ReturnDerivative von_mises_return_derivative(const VonMisesParams &prm, const Mat3 &sigma_tr,
+                                                    double eps_p) {
+  ReturnDerivative D;
+  Mat3 s = sigma_tr;
+  const ReturnResult r = von_mises_return(prm, s, eps_p);
+  const double G = prm.el.G();
+  const Mat3 s_tr = stress_inv::deviator(sigma_tr);
+  const double norm = s_tr.norm(), q_tr = std::sqrt(1.5) * norm;
+  if (!r.yielded) { // elastic, unless on the yield surface to round-off (see kOnSurface)
+    const double sy = prm.sigma_y0 + prm.hardening * eps_p;
+    if (!(q_tr > 0.0 && q_tr - sy >= -kOnSurface * sy)) return D;
+  }
+  D.n = s_tr / norm;
+  D.a = 1.0 - 3.0 * G * r.dgamma / q_tr;
+  D.b = -3.0 * G * (1.0 / (3.0 * G + prm.hardening) - r.dgamma / q_tr);
+  return D;
+}
+
 // Hypoelastic-plastic von Mises material: Jaumann-rotate the old stress, add the elastic
 // increment C:de (trial), then return (same as LinearElastic plus the return map).
 class VonMises final : public Material {
