@@ -56,6 +56,25 @@ def launch(exe, np_, args, out, timeout=3600):
     return s, p.stdout
 
 
+def build_revision(rev, tag):
+    """Build git revision `rev` once into bench/out/<tag>-<rev>/ (a detached worktree and a
+    Release build of the pmpm target); its pmpm path. A half-built directory is started again."""
+    d = ROOT / "bench" / "out" / f"{tag}-{rev}"
+    exe = d / "build" / "pmpm"
+    if exe.exists():
+        return exe
+    if d.exists():
+        subprocess.run(["git", "worktree", "remove", "--force", str(d)], cwd=ROOT)
+        shutil.rmtree(d, ignore_errors=True)
+    subprocess.run(["git", "worktree", "add", "--detach", str(d), rev], cwd=ROOT, check=True,
+                   stdout=subprocess.DEVNULL)
+    subprocess.run(["cmake", "-S", str(d), "-B", str(d / "build"), "-DCMAKE_BUILD_TYPE=Release"],
+                   check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(["cmake", "--build", str(d / "build"), "-j", str(os.cpu_count()), "--target",
+                    "pmpm"], check=True, stdout=subprocess.DEVNULL)
+    return exe
+
+
 def error_line(output, tail=300):
     """pmpm's one error line in a failed launch's output, or the output's tail."""
     return next((ln for ln in output.splitlines() if ln.startswith("pmpm: error")), output[-tail:])

@@ -17,11 +17,10 @@
 import argparse
 import os
 import shutil
-import subprocess
 import time
 from pathlib import Path
 
-from benchmarks_md import publish, run_pmpm
+from benchmarks_md import build_revision, publish, run_pmpm
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "bench" / "out" / "chains"
@@ -36,20 +35,7 @@ def run(exe, np_, args, out, timeout=3600):
 
 def baseline_binary(rev):
     """Build `rev` once into bench/out/baseline-<rev>/ (git worktree + cmake); its pmpm path."""
-    d = ROOT / "bench" / "out" / f"baseline-{rev}"
-    exe = d / "build" / "pmpm"
-    if exe.exists():
-        return exe
-    if d.exists():
-        subprocess.run(["git", "worktree", "remove", "--force", str(d)], cwd=ROOT)
-        shutil.rmtree(d, ignore_errors=True)
-    subprocess.run(["git", "worktree", "add", "--detach", str(d), rev], cwd=ROOT, check=True,
-                   stdout=subprocess.DEVNULL)
-    subprocess.run(["cmake", "-S", str(d), "-B", str(d / "build"), "-DCMAKE_BUILD_TYPE=Release"],
-                   check=True, stdout=subprocess.DEVNULL)
-    subprocess.run(["cmake", "--build", str(d / "build"), "-j", str(os.cpu_count()), "--target",
-                    "pmpm"], check=True, stdout=subprocess.DEVNULL)
-    return exe
+    return build_revision(rev, "baseline")
 
 
 def table(header, rows):

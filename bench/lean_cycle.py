@@ -14,14 +14,13 @@ machine is shared: the 1-minute load average before each run is printed beside t
 Memory: peak resident set (GNU time %M) over particles.
 """
 import argparse
-import os
 import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from benchmarks_md import MPI_ENV, ROOT, publish  # noqa: E402
+from benchmarks_md import MPI_ENV, ROOT, build_revision, publish  # noqa: E402
 from run import parse_log  # noqa: E402
 
 OUT = ROOT / "bench" / "out" / "lean"
@@ -42,20 +41,7 @@ CHANGES = [
 
 def binary(rev):
     """Build `rev` once into bench/out/lean-<rev>/; its pmpm path."""
-    d = ROOT / "bench" / "out" / f"lean-{rev}"
-    exe = d / "build" / "pmpm"
-    if exe.exists():
-        return exe
-    if d.exists():
-        subprocess.run(["git", "worktree", "remove", "--force", str(d)], cwd=ROOT)
-        shutil.rmtree(d, ignore_errors=True)
-    subprocess.run(["git", "worktree", "add", "--detach", str(d), rev], cwd=ROOT, check=True,
-                   stdout=subprocess.DEVNULL)
-    subprocess.run(["cmake", "-S", str(d), "-B", str(d / "build"), "-DCMAKE_BUILD_TYPE=Release"],
-                   check=True, stdout=subprocess.DEVNULL)
-    subprocess.run(["cmake", "--build", str(d / "build"), "-j", str(os.cpu_count()), "--target",
-                    "pmpm"], check=True, stdout=subprocess.DEVNULL)
-    return exe
+    return build_revision(rev, "lean")
 
 
 def case(quick):
