@@ -31,11 +31,12 @@ Prandtl-Reissner q_u = c N_c = 148.35 kPa. Plain F-bar is unstable under this di
 h = B/16 the soil beside the strip heaves off the grid at 0.8 q_u, kinetic energy growing), so the
 run is refused unless -fbar_pressure cell gives the force the cell's pressure (antilock.hpp).
 Measured (1 rank, soil half-width 4.5 m: the mechanism reaches 3.03 B; settlements in m):
-  h = B/16, F-bar + cell pressure: holds at 1.10 (0.085), collapses at 1.20   -> 1.10-1.20 q_u
+  h = B/16, F-bar + cell pressure: holds at 1.10 (0.088), collapses at 1.15   -> 1.10-1.15 q_u
+  h = B/16, no F-bar:              holds at 1.05 (0.043), collapses at 1.10   -> 1.05-1.10 q_u
   h = B/32, F-bar + cell pressure: holds at 1.05 (0.054), collapses at 1.10   -> 1.05-1.10 q_u
   h = B/32, no F-bar:              holds at 1.05 (0.060), collapses at 1.10   -> 1.05-1.10 q_u
-so at this resolution the c-phi capacity is within 10 % either way; locking shows in the von
-Mises case (above), not here. Asserted at h = B/32 (soil half-width 4 m) with stages at 0.95 and
+so at B/32 the c-phi capacity is within 10 % either way; locking shows in the von Mises case
+(above), not here. Asserted at h = B/32 (soil half-width 4 m) with stages at 0.95 and
 1.10 q_u:
   - the scene's exact value equals c N_c (1e-9);
   - plain F-bar with psi > 0 is refused with a message naming -fbar_pressure cell;
