@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Field covers (issue 9): what resolution each shipped example needs for its answer to hold.
 
-    /usr/bin/python3 bench/cover_refinement.py            # ~45 min on 2 cores; rewrites the
+    /usr/bin/python3 bench/cover_refinement.py            # ~75 min on 2 cores; rewrites the
                                                           # "Field covers" section of BENCHMARKS.md
-    /usr/bin/python3 bench/cover_refinement.py --quick    # the slope only, two meshes, ~1 min;
+    /usr/bin/python3 bench/cover_refinement.py --quick    # the slope only, two meshes, ~4 min;
                                                           # writes bench/out/cover_refinement/ only
     /usr/bin/python3 bench/cover_refinement.py --only slope,sinkhole
 
@@ -27,7 +27,7 @@ MARK_BEGIN, MARK_END = "<!-- cover_refinement.py begin -->", "<!-- cover_refinem
 
 # example: (options file, cell sizes coarse to fine, gauge length m)
 EXAMPLES = {
-    "slope": ("options/cover_slope.opts", [1.0, 0.5, 0.25], 1.0),
+    "slope": ("options/cover_slope.opts", [0.5, 0.25, 0.125], 1.0),  # holds at 0.25 m
     "sinkhole": ("options/cover_sinkhole.opts", [0.5, 0.25, 0.125], 0.5),
     "degradation": ("options/cover_degradation.opts", [1.0, 0.5, 0.25], 1.0),
 }
