@@ -87,7 +87,7 @@ class FootingScene final : public Scene {
     if (const auto *vm = dynamic_cast<const VonMises *>(&m))
       return (2.0 + M_PI) * vm->params().sigma_y0 / std::sqrt(3.0);
     if (const auto *dp = dynamic_cast<const DruckerPrager *>(&m)) {
-      const double phi = dp->params().phi_deg * M_PI / 180.0, c = dp->params().cohesion;
+      const double phi = phi_rad(sim), c = dp->params().cohesion;
       if (phi <= 0) return (2.0 + M_PI) * c;
       const double t = std::tan(M_PI / 4 + phi / 2);
       const double Nq = std::exp(M_PI * std::tan(phi)) * t * t;
