@@ -268,6 +268,16 @@ void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &
   }
 }
 
+bool chain_point_weights(const Chain &c, int i, const GridView &G, const Grid &grid,
+                         Weights<UGIMPShape> &W) {
+  const double *x = &c.x[i * DIM];
+  double tau[DIM], nrm[DIM], lp[DIM];
+  point_frame(c, i, tau, nrm);
+  point_halfsize(G, x, tau, lp);
+  weights<UGIMPShape>(x, lp, G.origin, G.h, W);
+  return !pinned(c, i) && owned_by(grid, G, x);
+}
+
 void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm) {
   Weights<UGIMPShape> W;
   constexpr int NS = UGIMPShape::NS, ND = GridDof::NDOF;

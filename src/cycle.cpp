@@ -455,6 +455,8 @@ PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio) {
     if (tr) p2g_traction<CPGIMPShape>(P, sim.loads, sim.traction_idx, load.factor, G);
     break;
   }
+  // the chains' tension, weight and end loads (grid_update sums a node's bodies)
+  for (const Chain &c : sim.chains) p2g_chain(c, load, G, g);
   PetscCall(GridRestoreLocal(g, G));
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscCall(GridLocalToGlobalAdd(g));

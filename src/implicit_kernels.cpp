@@ -80,7 +80,8 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
 //                    dtau = mu (dF F_tot^T + F_tot dF^T) + lambda tr(f^-1 dG) I, dF = dG F^n
 //                    dP = (dtau - tau f^-T dG^T) f^-T / J^n
 void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
-                   const double *s_new, const double *Fn, double eps_p, double *A) {
+                   const double *s_new, const double *Fn, double eps_p, double *A,
+                   const double *eigen) {
   const TangentKind kind = tm.kind;
   const ElasticConstants &el = tm.el;
   const MatN I = MatN::Identity();
@@ -97,6 +98,8 @@ void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
     so3 = stress_to_tensor(s_old);
     Mat3 de, dw;
     strain_and_spin(G, de, dw);
+    if (eigen)
+      for (int d = 0; d < 3; ++d) de(d, d) -= eigen[d];
     const Mat3 s_tr = jaumann_rotate(so3, dw) + elastic_increment(el, de);
     D = kind == TangentKind::VonMises
             ? von_mises_return_derivative(tm.vm, s_tr, eps_p)

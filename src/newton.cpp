@@ -17,7 +17,9 @@
 //  - Default linear solver: a direct LU by MUMPS (any rank count; PETSc's own LU is serial), the
 //    line search bt; every -snes_/-ksp_/-pc_ option overrides them.
 #include "pmpm/newton.hpp"
+#include "pmpm/chain_implicit.hpp"
 #include "pmpm/cycle.hpp"
+#include "pmpm/degradation.hpp"
 #include "pmpm/implicit_kernels.hpp"
 #include <petscsnes.h>
 #include <cmath>
@@ -38,10 +40,17 @@ struct NewtonSolver {
   double frac = 0;          // the last solve's max |du| / h over the free dofs
   bool atol_given = false;  // -snes_atol given: keep it; else set per step from the load
   double lambda = 0;        // load factor of the current solve
+  double shrink = 0;        // the current load step's share of the stage's shrinkage
   double kref = 1;          // diagonal of held and unsupported dofs (Pa: the stiffness scale)
   std::vector<TangentModel> model; // per material: what its consistent tangent needs
   PetscInt width = 2;              // the solve's stencil width (the shape's support)
   std::vector<double> G, Fnew, snew, epsp, Pk, blocks;
+  std::vector<double> eigen; // the load step's eigenstrain increment, 3 per particle (or empty)
+  // membrane chains (chain_implicit.hpp): per chain its stencils and trial state at the step's
+  // start, and the points' increments of all chains (summed over ranks)
+  std::vector<ChainStencil> cst;
+  std::vector<ChainTrial> ctr;
+  std::vector<double> cdu;
 };
 
 namespace {
@@ -83,8 +92,23 @@ template <class Shape> PetscErrorCode TrialState(NewtonSolver &ns, Vec U, const 
   PetscCall(VecGetArrayRead(ns.maskL, &mk));
   implicit_gradient<Shape>(P, LocalView(ns, const_cast<double *>(u)),
                            LocalView(ns, const_cast<double *>(mk)), ns.G.data());
+  size_t off = 0; // the chains' points: the owners' increments, summed so every rank has all
+  for (const ChainStencil &S : ns.cst) {
+    chain_point_increment(S, LocalView(ns, const_cast<double *>(u)),
+                          LocalView(ns, const_cast<double *>(mk)), ns.cdu.data() + off);
+    off += S.mapped.size() * DIM;
+  }
   PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
   PetscCall(VecRestoreArrayRead(ns.Uloc, &u));
+  if (!ns.cst.empty()) {
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, ns.cdu.data(), static_cast<int>(ns.cdu.size()),
+                               MPI_DOUBLE, MPI_SUM, sim.comm));
+    off = 0;
+    for (size_t k = 0; k < sim.chains.size(); ++k) {
+      chain_trial(sim.chains[k], ns.cdu.data() + off, ns.ctr[k]);
+      off += static_cast<size_t>(sim.chains[k].n) * DIM;
+    }
+  }
   implicit_deformation(P.n, ns.G.data(), P.F, ns.Fnew.data());
   for (size_t k = 0; k < sim.mats.size(); ++k) {
     StressBatch b;
@@ -95,6 +119,7 @@ template <class Shape> PetscErrorCode TrialState(NewtonSolver &ns, Vec U, const 
     b.F = ns.Fnew.data();
     b.stress = ns.snew.data();
     b.eps_p = ns.epsp.data();
+    if (!ns.eigen.empty()) b.eigen = ns.eigen.data();
     sim.mats[k].model->update_stress(b);
   }
   implicit_piola(P.n, ns.G.data(), ns.snew.data(), ns.Pk.data());
@@ -111,6 +136,8 @@ template <class Shape> PetscErrorCode Residual(NewtonSolver &ns, Vec U, Vec R) {
   PetscCall(VecZeroEntries(ns.Rloc));
   PetscCall(VecGetArray(ns.Rloc, &r));
   implicit_internal_force<Shape>(P, ns.Pk.data(), LocalView(ns, r));
+  for (size_t k = 0; k < ns.cst.size(); ++k)
+    chain_internal_force(ns.cst[k], ns.ctr[k], LocalView(ns, r));
   PetscCall(VecRestoreArray(ns.Rloc, &r));
   PetscCall(ParticlesRestoreView(ns.sim->parts, P));
   PetscCall(VecZeroEntries(R));
@@ -168,12 +195,21 @@ template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
   for (PetscInt p = 0; p < P.n; ++p) {
     const PetscInt mat = P.mat[p];
     piola_tangent(ns.model[mat], &ns.G[p * DIM * DIM], P.stress + p * NSTRESS,
-                  &ns.snew[p * NSTRESS], P.F + p * DIM * DIM, P.eps_p[p], A);
+                  &ns.snew[p * NSTRESS], P.F + p * DIM * DIM, P.eps_p[p], A,
+                  ns.eigen.empty() ? nullptr : &ns.eigen[3 * p]);
     weights<Shape>(P.x + p * DIM, P.lp + p * DIM, sim.grid.origin, sim.grid.h, W);
     particle_stiffness<Shape>(W, P.vol[p], A, K);
     add_particle_blocks<Shape>(W, K, NB);
   }
   PetscCall(ParticlesRestoreView(sim.parts, P));
+  int missed = 0;
+  for (size_t k = 0; k < ns.cst.size(); ++k)
+    missed += chain_stiffness(sim.chains[k], ns.cst[k], ns.ctr[k], NB);
+  // the stencil width covers a chain whose neighbouring points lie within a cell of each other
+  PetscCheck(missed == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+             "-solver newton: %d couplings of a membrane chain reach beyond the stencil width %d "
+             "(its points more than a cell apart?): raise -newton_load_steps",
+             missed, (int)ns.width);
   PetscCall(VecGetArrayRead(ns.maskL, &mk));
   const NodalView M = LocalView(ns, const_cast<double *>(mk));
   std::vector<MatStencil> rows(DIM), cols(static_cast<size_t>(nb) * DIM);
@@ -260,14 +296,22 @@ PetscErrorCode Loads(NewtonSolver &ns) {
     p2g<UGIMPShape>(P, load, G);
     if (tr) p2g_traction<UGIMPShape>(P, sim.loads, sim.traction_idx, 1.0, G);
   }
+  // the chains' weight and end loads, and their mass (support), into their bodies' blocks
+  for (const Chain &c : sim.chains) p2g_chain(c, load, G, sim.grid);
   PetscCall(GridRestoreLocal(sim.grid, G));
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscCall(GridLocalToGlobalAdd(sim.grid));
   PetscCall(GridGetGlobal(sim.grid, G));
+  // bonded bodies move as one: a node's mass and load are the sums over its bodies
+  auto body_sum = [&](const double *node, int dof) {
+    double v = 0;
+    for (int b = 0; b < G.nbody; ++b) v += node[b * GridDof::NDOF + dof];
+    return v;
+  };
   double mmax = 0;
   for (PetscInt j = ns.s[1]; j < ns.s[1] + ns.m[1]; ++j)
     for (PetscInt i = ns.s[0]; i < ns.s[0] + ns.m[0]; ++i)
-      mmax = std::fmax(mmax, G.node(i, j)[GridDof::M]);
+      mmax = std::fmax(mmax, body_sum(G.node(i, j), GridDof::M));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mmax, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
   PetscCall(VecGetArray(ns.fext, &f));
   PetscCall(VecGetArray(ns.maskG, &mk));
@@ -277,9 +321,9 @@ PetscErrorCode Loads(NewtonSolver &ns) {
       const PetscInt q = ((j - ns.s[1]) * ns.m[0] + (i - ns.s[0])) * DIM;
       bool held[DIM];
       held_dofs(i, j, sim.ncell, sim.face, held);
-      const bool supported = node[GridDof::M] > kSmallCut * mmax;
+      const bool supported = body_sum(node, GridDof::M) > kSmallCut * mmax;
       for (int a = 0; a < DIM; ++a) {
-        f[q + a] = node[GridDof::FEXT + a];
+        f[q + a] = body_sum(node, GridDof::FEXT + a);
         mk[q + a] = supported && !held[a] ? 1.0 : 0.0;
       }
     }
@@ -349,9 +393,17 @@ template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
     b.F = P.F;
     b.stress = P.stress;
     b.eps_p = P.eps_p;
+    if (!ns.eigen.empty()) b.eigen = ns.eigen.data();
     sim.mats[k].model->update_stress(b);
   }
   PetscCall(ParticlesRestoreView(sim.parts, P));
+  // the chains: the trial positions of the converged du (alike on every rank), then the law's
+  // committed state and the tensions from them
+  for (size_t k = 0; k < sim.chains.size(); ++k) {
+    Chain &c = sim.chains[k];
+    c.x = ns.ctr[k].x;
+    chain_update_tension(c);
+  }
   struct {
     double v;
     int rank;
@@ -374,6 +426,37 @@ template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
   PetscFunctionReturn(0);
 }
 
+// The chains' stencils at the load step's start; every point must be mapped by one rank or pinned.
+PetscErrorCode ChainStencils(NewtonSolver &ns) {
+  Simulation &sim = *ns.sim;
+  PetscFunctionBeginUser;
+  ns.cst.resize(sim.chains.size());
+  ns.ctr.resize(sim.chains.size());
+  size_t npts = 0;
+  GridView G; // the grid's geometry only
+  G.h = sim.grid.h;
+  for (int d = 0; d < DIM; ++d) {
+    G.origin[d] = sim.grid.origin[d];
+    G.ncell[d] = sim.grid.ncell[d];
+  }
+  std::vector<int> count(sim.chains.size()), expect(sim.chains.size());
+  for (size_t k = 0; k < sim.chains.size(); ++k) {
+    const Chain &c = sim.chains[k];
+    count[k] = chain_stencil(c, G, sim.grid, ns.cst[k]);
+    expect[k] = c.n - (c.pin[0] ? 1 : 0) - (c.pin[1] ? 1 : 0);
+    npts += static_cast<size_t>(c.n) * DIM;
+  }
+  ns.cdu.assign(npts, 0.0);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, count.data(), static_cast<int>(count.size()), MPI_INT,
+                             MPI_SUM, sim.comm));
+  for (size_t k = 0; k < sim.chains.size(); ++k)
+    PetscCheck(count[k] == expect[k], sim.comm, PETSC_ERR_NOT_CONVERGED,
+               "-solver newton: chain %s has %d of its %d free points off the grid: enlarge the "
+               "grid",
+               sim.chains[k].name.c_str(), expect[k] - count[k], expect[k]);
+  PetscFunctionReturn(0);
+}
+
 // The largest displacement increment of a free dof, in cells.
 PetscErrorCode IncrementInCells(NewtonSolver &ns, double *frac) {
   const double *u, *mk;
@@ -391,18 +474,39 @@ PetscErrorCode IncrementInCells(NewtonSolver &ns, double *frac) {
   PetscFunctionReturn(0);
 }
 
-// One load step to load factor lambda from the committed state: SNES solve, then commit.
+// A stage's load path, parametrised by t from 0 to 1 over its load steps: the load factor on f_ext
+// and the share of the stage's change imposed by t (Scene::stage_change). Stage 0 ramps the loads
+// from zero; a shrinkage stage holds them at full and imposes its eigenstrain in proportion to t
+// (each load step its share, in the trial stress update and in the commit: a stress-free strain,
+// so the tangent has no term of its own).
+struct LoadPath {
+  bool ramp_loads = true; // f_ext from 0 to full over the stage; else full throughout
+  double shrink = 0;      // the stage's volumetric shrinkage (Simulation::stage_shrink)
+  double load(double t) const { return ramp_loads ? t : 1.0; }
+};
+
+// One load step from t0 to t1 on the path, from the committed state: SNES solve, then commit.
 // Returns the SNES reason (the state is committed only when it is positive) and, under
 // -newton_cell_fraction with `limit`, whether the converged step was rejected for moving the body
 // more than that fraction of a cell (not committed either).
-PetscErrorCode LoadStep(NewtonSolver &ns, double lambda, bool limit, SNESConvergedReason *reason,
-                        bool *rejected) {
+PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, double t1, bool limit,
+                        SNESConvergedReason *reason, bool *rejected) {
   Simulation &sim = *ns.sim;
   PetscInt its = 0, lits = 0;
+  const double lambda = path.load(t1);
   PetscFunctionBeginUser;
   *rejected = false;
   PetscCall(Loads(ns));
+  PetscCall(ChainStencils(ns));
   ns.lambda = lambda;
+  ns.shrink = path.shrink * (t1 - t0);
+  ns.eigen.clear();
+  if (ns.shrink != 0) { // this step's share of the eigenstrain, per particle (3: xx yy zz)
+    ParticleView P;
+    PetscCall(ParticlesGetView(sim.parts, P));
+    shrinkage_increment(P, sim.shrink, ns.shrink, ns.eigen);
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+  }
   if (!ns.atol_given) {
     double fn;
     PetscCall(VecNorm(ns.fext, NORM_2, &fn));
@@ -433,15 +537,15 @@ PetscErrorCode LoadStep(NewtonSolver &ns, double lambda, bool limit, SNESConverg
   ++sim.run.load_steps;
   ++sim.run.step;
   ++sim.run.stage_step;
-  sim.run.time = lambda; // pseudo-time: the load factor
+  sim.run.time = t1; // pseudo-time: the stage's path parameter
   if (!sim.set.quiet) {
     double rn;
     PetscCall(SNESGetFunctionNorm(ns.snes, &rn));
     PetscCall(PetscPrintf(sim.comm,
-                          "  load step %4" PetscInt_FMT "  load %.4f  Newton its %2" PetscInt_FMT
+                          "  load step %4" PetscInt_FMT "  %s %.4f  Newton its %2" PetscInt_FMT
                           "  linear its %3" PetscInt_FMT "  |R| %.3e  max|du|/h %.2e  (%s)\n",
-                          sim.run.load_steps, lambda, its, lits, rn, ns.frac,
-                          SNESConvergedReasons[*reason]));
+                          sim.run.load_steps, path.ramp_loads ? "load" : "stage", t1, its, lits,
+                          rn, ns.frac, SNESConvergedReasons[*reason]));
   }
   PetscCall(sim.scene->monitor(sim));
   PetscFunctionReturn(0);
@@ -451,16 +555,28 @@ PetscErrorCode LoadStep(NewtonSolver &ns, double lambda, bool limit, SNESConverg
 PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver &ns) {
   const char *fix = "; use -solver relaxation";
   PetscFunctionBeginUser;
-  PetscCheck(sim.chain_specs.empty(), sim.comm, PETSC_ERR_SUP,
-             "-solver newton does not support membrane chains yet (scene %s has %d)%s",
-             sim.set.scene.c_str(), (int)sim.chain_specs.size(), fix);
-  PetscCheck(sim.iface.type == InterfaceType::Bonded, sim.comm, PETSC_ERR_SUP,
+  // membrane chains: bonded on both faces, the bodies and the sheet then share one field
+  for (const Chain &c : sim.chains)
+    PetscCheck(c.top.type == FaceType::Bonded && c.bottom.type == FaceType::Bonded, sim.comm,
+               PETSC_ERR_SUP,
+               "-solver newton solves membrane chains bonded on both faces only: chain %s has "
+               "%s / %s faces (-chain_%s_interface, default from -interface_type, else contact); "
+               "add -chain_%s_interface bonded, or for slip and separation%s",
+               c.name.c_str(), FaceTypeNames[(int)c.top.type], FaceTypeNames[(int)c.bottom.type],
+               c.name.c_str(), c.name.c_str(), fix);
+  // without chains -interface_type is the colour-1 body's interface
+  PetscCheck(!sim.chains.empty() || sim.iface.type == InterfaceType::Bonded, sim.comm,
+             PETSC_ERR_SUP,
              "-solver newton does not support frictional interfaces (-interface_type %s) yet%s",
              InterfaceTypeNames[(int)sim.iface.type], fix);
-  PetscCheck(sim.scene->stages() == 0, sim.comm, PETSC_ERR_SUP,
-             "-solver newton does not support stages yet (scene %s has %d: shrinkage, voids, "
-             "load increments up to collapse)%s",
-             sim.set.scene.c_str(), (int)sim.scene->stages(), fix);
+  // stages: stage 0's loads and shrinkage stages have a load path (Newton's LoadPath)
+  for (PetscInt k = 1; k <= sim.scene->stages(); ++k) {
+    const StageChange ch = sim.scene->stage_change(k);
+    PetscCheck(ch == StageChange::Shrink, sim.comm, PETSC_ERR_SUP,
+               "-solver newton runs stage 0 and shrinkage stages only: stage %d of scene %s "
+               "changes %s%s",
+               (int)k, sim.set.scene.c_str(), StageChangeNames[(int)ch], fix);
+  }
   PetscCheck(!sim.set.dynamic, sim.comm, PETSC_ERR_SUP,
              "-solver newton is quasi-static: -dynamic needs -solver relaxation");
   PetscCheck(!sim.set.fbar, sim.comm, PETSC_ERR_SUP, "-solver newton does not support -fbar yet%s",
@@ -550,8 +666,9 @@ PetscErrorCode NewtonSetup(Simulation &sim) {
   PetscCall(DMDAGetInfo(sim.grid.da, nullptr, &M, &N, nullptr, &px, &py, nullptr, nullptr, nullptr,
                         nullptr, nullptr, nullptr, nullptr));
   PetscCall(DMDAGetOwnershipRanges(sim.grid.da, &lx, &ly, nullptr));
-  const PetscInt width =
-      sim.set.shape == ShapeKind::Linear ? LinearShape::NS - 1 : UGIMPShape::NS - 1;
+  // A chain couples the nodes of neighbouring points (up to a cell apart), one node farther.
+  PetscInt width = sim.set.shape == ShapeKind::Linear ? LinearShape::NS - 1 : UGIMPShape::NS - 1;
+  if (!sim.chains.empty()) width = UGIMPShape::NS;
   ns->width = width;
   PetscCall(DMDACreate2d(sim.comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX, M, N,
                          px, py, DIM, width, lx, ly, &ns->da));
@@ -617,25 +734,44 @@ PetscErrorCode Newton(Simulation &sim) {
   run.converged = false;
   run.stage_step = 0;
   const double t_start = MPI_Wtime();
+  // the stage's load path (CheckSupported refused the other changes; a scene's begin_stage may
+  // not switch a chain's faces from bonded either)
+  const StageChange change = sim.scene->stage_change(sim.stage);
+  PetscCheck(change == StageChange::Loads || change == StageChange::Shrink, sim.comm,
+             PETSC_ERR_SUP, "-solver newton: stage %d changes %s; use -solver relaxation",
+             (int)sim.stage, StageChangeNames[(int)change]);
+  for (const Chain &c : sim.chains)
+    PetscCheck(c.top.type == FaceType::Bonded && c.bottom.type == FaceType::Bonded, sim.comm,
+               PETSC_ERR_SUP,
+               "-solver newton: stage %d runs chain %s with %s / %s faces (bonded only); use "
+               "-solver relaxation",
+               (int)sim.stage, c.name.c_str(), FaceTypeNames[(int)c.top.type],
+               FaceTypeNames[(int)c.bottom.type]);
+  LoadPath path;
+  path.ramp_loads = change == StageChange::Loads;
+  path.shrink = change == StageChange::Shrink ? sim.stage_shrink : 0.0;
   if (!s.quiet)
     PetscCall(PetscPrintf(sim.comm,
                           "pmpm %s: %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g m, shape "
-                          "%s, -solver newton: %" PetscInt_FMT " load steps, tolerance %g\n",
+                          "%s, -solver newton: %" PetscInt_FMT " load steps, tolerance %g; stage "
+                          "%d: %s%s\n",
                           s.scene.c_str(), sim.ncell[0], sim.ncell[1], s.h,
-                          ShapeKindNames[(int)s.shape], ns.load_steps, s.tol));
+                          ShapeKindNames[(int)s.shape], ns.load_steps, s.tol, (int)sim.stage,
+                          path.ramp_loads ? "the loads from zero" : "shrinkage at full load",
+                          path.ramp_loads ? "" : " (stage fraction per step)"));
   // load steps, each halved while its solve fails. Under -newton_cell_fraction f the first step
   // sizes them all: from the unloaded state its increment is the load's alone, |du| / h per unit
   // load (later steps also carry the grid reset's correction, which does not shrink with them),
   // so the step count is ceil(that / f), the first step redone when it moved more than f cells.
   double nominal = 1.0 / double(ns.load_steps);
-  double lambda = 0, dl = nominal;
+  double t = 0, dl = nominal; // the path parameter: the load factor in stage 0
   PetscInt cuts = 0;
   bool sized = ns.cell_fraction <= 0;
-  while (lambda < 1.0 - 1e-12) {
-    const double target = std::fmin(1.0, lambda + dl);
+  while (t < 1.0 - 1e-12) {
+    const double target = std::fmin(1.0, t + dl);
     SNESConvergedReason reason;
     bool rejected;
-    PetscCall(LoadStep(ns, target, !sized, &reason, &rejected));
+    PetscCall(LoadStep(ns, path, t, target, !sized, &reason, &rejected));
     if (!sized && reason > 0) {
       sized = true;
       const double steps = std::ceil(ns.frac / (ns.cell_fraction * target) * (1 - 1e-12));
@@ -651,17 +787,18 @@ PetscErrorCode Newton(Simulation &sim) {
     }
     if (reason <= 0) {
       PetscCheck(++cuts <= ns.max_cuts, sim.comm, PETSC_ERR_NOT_CONVERGED,
-                 "-solver newton: the load step to load factor %g did not converge (SNES: %s) "
+                 "-solver newton: stage %d's load step to %s %g did not converge (SNES: %s) "
                  "after %" PetscInt_FMT " halvings. Raise -newton_load_steps (now %" PetscInt_FMT
                  ") or -newton_max_cuts, or see -snes_converged_reason -snes_monitor.",
-                 target, SNESConvergedReasons[reason], ns.max_cuts, ns.load_steps);
+                 (int)sim.stage, path.ramp_loads ? "load factor" : "stage fraction", target,
+                 SNESConvergedReasons[reason], ns.max_cuts, ns.load_steps);
       dl *= 0.5;
       if (!s.quiet)
         PetscCall(PetscPrintf(sim.comm, "  load step to %.4f failed (%s): step halved to %.4g\n",
                               target, SNESConvergedReasons[reason], dl));
       continue;
     }
-    lambda = target;
+    t = target;
     dl = std::fmin(nominal, 2.0 * dl); // back toward the nominal step after a cut
   }
   // equilibrium steps on the reset grid until relaxation's criterion holds
@@ -669,7 +806,7 @@ PetscErrorCode Newton(Simulation &sim) {
   for (PetscInt k = 0; k < ns.max_equilibrium && !(run.ratio <= s.tol); ++k) {
     SNESConvergedReason reason;
     bool rejected;
-    PetscCall(LoadStep(ns, 1.0, false, &reason, &rejected));
+    PetscCall(LoadStep(ns, path, 1.0, 1.0, false, &reason, &rejected));
     PetscCheck(reason > 0, sim.comm, PETSC_ERR_NOT_CONVERGED,
                "-solver newton: an equilibrium step at full load did not converge (SNES: %s)",
                SNESConvergedReasons[reason]);
@@ -681,10 +818,10 @@ PetscErrorCode Newton(Simulation &sim) {
   if (!s.quiet)
     PetscCall(PetscPrintf(
         sim.comm,
-        "%s: unbalanced-force ratio %.3e %s %g after %" PetscInt_FMT " load steps, %" PetscInt_FMT
-        " Newton and %" PetscInt_FMT " linear iterations (%.2f s)\n",
+        "%s: unbalanced-force ratio %.3e %s %g after %" PetscInt_FMT " load steps (%" PetscInt_FMT
+        " in all), %" PetscInt_FMT " Newton and %" PetscInt_FMT " linear iterations (%.2f s)\n",
         run.converged ? "converged" : "NOT converged", run.ratio, run.converged ? "<=" : ">", s.tol,
-        run.load_steps, run.newton_its, run.linear_its, run.stage_seconds));
+        run.stage_step, run.load_steps, run.newton_its, run.linear_its, run.stage_seconds));
   PetscFunctionReturn(0);
 }
 

@@ -28,6 +28,7 @@
 #include "pmpm/contact_stack.hpp"
 #include "pmpm/grid.hpp"
 #include "pmpm/materials/membrane_law.hpp"
+#include "pmpm/shape.hpp"
 #include "pmpm/transfers.hpp"
 #include <string>
 #include <vector>
@@ -111,6 +112,11 @@ void chain_update_tension(Chain &c);
 // Mass, momentum, force (internal, weight, end load) and geometry of the points this rank owns
 // into body c.body's block and the chain's slots.
 void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &grid);
+// Point i's uGIMP weights on the grid (its thin block, as p2g_chain maps it) from the current
+// positions, and whether this rank maps it: it owns the point's cell and the point is not pinned
+// (Grid::owns_cell; a point off the grid is nobody's). Only origin, ncell and h of G are read.
+bool chain_point_weights(const Chain &c, int i, const GridView &G, const Grid &grid,
+                         Weights<UGIMPShape> &W);
 // Points this rank owns (Chain::owned): FLIP/PIC velocity, position; slip and pressure on each
 // face from the neighbouring bodies. The caller shares them (chain_pack, allreduce, unpack).
 void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm);

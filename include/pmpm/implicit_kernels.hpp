@@ -73,9 +73,13 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
 // dudx = G), neo-Hookean, or the rate-form plastic models (the same elastic predictor followed
 // by the return map, differentiated through it: the consistent tangent). s_old: committed
 // stress; s_new: the stress at G (after the return); Fn: committed F; eps_p: committed
-// equivalent plastic strain (plastic models only).
+// equivalent plastic strain (plastic models only). eigen (3 values xx yy zz, or null): the step's
+// eigenstrain increment (degradation.hpp), which the rate-form update subtracts from sym(G): a
+// stress-free strain, so it moves the plastic models' trial stress (and so their return) but adds
+// no term of its own.
 void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
-                   const double *s_new, const double *Fn, double eps_p, double *A);
+                   const double *s_new, const double *Fn, double eps_p, double *A,
+                   const double *eigen = nullptr);
 
 // One particle's stiffness over its support: the NN nodes of weights() (node k at base +
 // (k % NS, k / NS)); K[(k DIM + a) (NN DIM) + (m DIM + b)] = V sum_jl dS_k/dx_j A_ajbl dS_m/dx_l.

@@ -70,6 +70,13 @@ struct MaterialEntry {
   double density = 0; // inertial density (kg/m^3), possibly scaled
 };
 
+// What a stage changes, for the solver's load path (newton.cpp): stage 0 applies the loads from
+// zero; a shrinkage stage imposes an eigenstrain (Simulation::stage_shrink) at full load; a void
+// removes particles; anything else (a pressure raised, a support moved) is `Other`.
+enum class StageChange { Loads = 0, Shrink = 1, Void = 2, Other = 3 };
+inline constexpr const char *StageChangeNames[] = {
+    "the loads", "a shrinkage", "a void (particles removed)", "loads or supports", nullptr};
+
 struct Simulation;
 struct NewtonSolver; // newton.cpp: the SNES, its DMDA and matrix (-solver newton only)
 
@@ -93,6 +100,11 @@ public:
   virtual PetscInt stages() const { return 0; }
   virtual PetscErrorCode begin_stage(Simulation &, PetscInt) { return 0; }
   virtual PetscErrorCode end_stage(Simulation &, PetscInt) { return 0; }
+  // What stage k changes (known after setup): stage 0 the loads; by default a later stage is
+  // `Other`, which only relaxation can follow.
+  virtual StageChange stage_change(PetscInt k) const {
+    return k == 0 ? StageChange::Loads : StageChange::Other;
+  }
   // True when the later stages have no meaning any more (a footing that collapsed).
   virtual bool finished() const { return false; }
   // Checkpoint and restart (checkpoint.hpp): the scene's own state that changes during a run

@@ -392,6 +392,14 @@ class CoverScene final : public Scene {
                "-cover_shrink_total %g needs -cover_shrink_stages >= 1", shrink_total_);
     PetscCheck(shrink_steps_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-cover_shrink_steps must be >= 0");
+    // -solver newton solves bonded chains only (newton.cpp checks their own faces): the
+    // geostatic stage's paper faces would be a frictional interface in stage 0
+    PetscCheck(!(sim.set.solver == Solver::Newton && geostatic_paper_ && !mem_.empty()),
+               sim.comm, PETSC_ERR_SUP,
+               "-solver newton needs the membranes bonded in every stage, and "
+               "-cover_geostatic_paper (on by default) runs stage 0 with paper faces: add "
+               "-cover_geostatic_paper false (with -chain_<name>_interface bonded), or use "
+               "-solver relaxation");
     PetscCheck(sim.shrink.taper >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-cover_shrink_taper must be >= 0");
     PetscCheck(sim.shrink.grade_bottom >= 0 && sim.shrink.grade_top >= 0, sim.comm,
@@ -539,6 +547,11 @@ public:
 
   PetscInt stages() const override {
     return (shrink_total_ > 0 ? shrink_stages_ : 0) + static_cast<PetscInt>(void_w_.size());
+  }
+
+  StageChange stage_change(PetscInt k) const override {
+    const PetscInt ns = shrink_total_ > 0 ? shrink_stages_ : 0;
+    return k == 0 ? StageChange::Loads : k <= ns ? StageChange::Shrink : StageChange::Void;
   }
 
   PetscErrorCode begin_stage(Simulation &sim, PetscInt k) override {

@@ -61,6 +61,25 @@ struct MembraneLaw {
     }
     return 0.0;
   }
+
+  // The consistent tangent dT/d(eps) of tension() at the total strain eps from the committed
+  // state (eps_p, alpha) of the step's start (the implicit solver's bar stiffness): J where
+  // elastic (linear, a taut tension_only sheet), 0 where slack, J hardening / (J + hardening)
+  // where the return map is active (the closed-form return is exact, so this is its derivative).
+  double tangent(double eps, double eps_p, double alpha) const {
+    switch (kind) {
+    case MembraneLawKind::Linear:
+      return J;
+    case MembraneLawKind::TensionOnly:
+      return J * eps < 0.0 ? 0.0 : J;
+    case MembraneLawKind::Elastoplastic: {
+      const double T_tr = J * (eps - eps_p);
+      const double f = (T_tr < 0.0 ? -T_tr : T_tr) - (yield_T + hardening * alpha);
+      return f > 0.0 ? J * hardening / (J + hardening) : J;
+    }
+    }
+    return 0.0;
+  }
 };
 
 } // namespace pmpm
