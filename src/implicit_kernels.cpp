@@ -72,7 +72,8 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
 //   linear elastic:  P = J s' f^-T, ds' = dW s - s dW + lambda tr(dG) I + 2 mu sym(dG),
 //                    dW = skew(dG) (the Jaumann update is linear in G; s the committed stress)
 //                    dP = J (tr(f^-1 dG) s' + ds' - s' f^-T dG^T) f^-T
-//   plastic (von Mises, Drucker-Prager): s' = return(s_tr), s_tr = s + W s - s W + C : sym(G)
+//   plastic (von Mises, Drucker-Prager): s' = return(s_tr), s_tr = s + W s - s W + C : (sym(G) -
+//   e*)
 //                    (3 x 3: sigma_zz is part of the trial state and of the return), so
 //                    ds' = D : ds_tr with D the return's derivative at s_tr (ReturnDerivative),
 //                    ds_tr = dW s - s dW + lambda tr(dG) I + 2 mu sym(dG); dP as above

@@ -14,6 +14,9 @@
 //    carry the increment (x += sum S_i du_i, F, V, stress) and the grid is reset. Relaxation's
 //    equilibrium is on the reset grid, so after the last load step Newton takes equilibrium steps
 //    at full load until relaxation's unbalanced-force ratio (StaticResidual) is <= -tol.
+//  - Membrane chains bonded on both faces are more internal force on the same du
+//    (chain_implicit.hpp); the stencil is then one node wider. Stages run on a LoadPath (stage 0
+//    ramps the loads, a shrinkage stage its eigenstrain at full load; Scene::stage_change).
 //  - Default linear solver: a direct LU by MUMPS (any rank count; PETSc's own LU is serial), the
 //    line search bt; every -snes_/-ksp_/-pc_ option overrides them.
 #include "pmpm/newton.hpp"
@@ -544,8 +547,8 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
     PetscCall(PetscPrintf(sim.comm,
                           "  load step %4" PetscInt_FMT "  %s %.4f  Newton its %2" PetscInt_FMT
                           "  linear its %3" PetscInt_FMT "  |R| %.3e  max|du|/h %.2e  (%s)\n",
-                          sim.run.load_steps, path.ramp_loads ? "load" : "stage", t1, its, lits,
-                          rn, ns.frac, SNESConvergedReasons[*reason]));
+                          sim.run.load_steps, path.ramp_loads ? "load" : "stage", t1, its, lits, rn,
+                          ns.frac, SNESConvergedReasons[*reason]));
   }
   PetscCall(sim.scene->monitor(sim));
   PetscFunctionReturn(0);
@@ -737,9 +740,9 @@ PetscErrorCode Newton(Simulation &sim) {
   // the stage's load path (CheckSupported refused the other changes; a scene's begin_stage may
   // not switch a chain's faces from bonded either)
   const StageChange change = sim.scene->stage_change(sim.stage);
-  PetscCheck(change == StageChange::Loads || change == StageChange::Shrink, sim.comm,
-             PETSC_ERR_SUP, "-solver newton: stage %d changes %s; use -solver relaxation",
-             (int)sim.stage, StageChangeNames[(int)change]);
+  PetscCheck(change == StageChange::Loads || change == StageChange::Shrink, sim.comm, PETSC_ERR_SUP,
+             "-solver newton: stage %d changes %s; use -solver relaxation", (int)sim.stage,
+             StageChangeNames[(int)change]);
   for (const Chain &c : sim.chains)
     PetscCheck(c.top.type == FaceType::Bonded && c.bottom.type == FaceType::Bonded, sim.comm,
                PETSC_ERR_SUP,

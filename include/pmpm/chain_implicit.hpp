@@ -6,7 +6,8 @@
 //   du_i = sum_k w_ik du_k                    (held and unsupported dofs masked out)
 //   x_i  = x_i^n + du_i,  eps_s = l_s / l0_s - 1,  T_s = law(eps_s; committed eps_p, alpha)
 //   f_i  = T_i tau_i - T_{i-1} tau_{i-1}      (as chain_update_tension)
-//   R_k += -w_ik f_i                          (R = f_int - f_ext: the sheet's pull acts on the body)
+//   R_k += -w_ik f_i                          (R = f_int - f_ext: the sheet's pull acts on the
+//   body)
 // and the tangent is W^T K W with K the two-node bar of each segment s (n its unit vector, l its
 // trial length): K_s = dT/deps / l0 n n^T + T / l (I - n n^T) on (+, -; -, +), dT/deps the law's
 // consistent tangent (0 where a tension-only sheet is slack). Pinned points are not mapped (their
