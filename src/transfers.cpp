@@ -71,7 +71,7 @@ void p2g_impl(const ParticleView &P, const Load &load_, const GridView &G_, cons
   const GridView G = G_;
   const Load load = load_;
   const int ND = Multi ? G.nd : GridDof::NDOF;
-  const PetscInt row = G.gm[0] * ND;
+  const PetscInt row = G.row() * ND;
   constexpr bool bodies = Multi;
   Stencil<Shape> S;
   const PetscInt n = idx ? nidx : P.n;
@@ -333,7 +333,7 @@ void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, co
   const int ND = Multi ? G0.nd : GridDof::NDOF;
   constexpr bool vel = mode != G2PMode::Kinematics, kin = mode != G2PMode::Velocity;
   const double dt = prm.dt, pic = prm.pic;
-  const PetscInt row = G0.gm[0] * ND; // G1 shares G0's layout
+  const PetscInt row = G0.row() * ND; // G1 shares G0's layout
   constexpr bool bodies = Multi;      // each particle reads its own body's block
   const double hx = G0.origin[0] + G0.ncell[0] * G0.h, hy = G0.origin[1] + G0.ncell[1] * G0.h;
   const double invh = 1.0 / G0.h;
