@@ -238,16 +238,7 @@ struct PrescribedCursor {
 };
 } // namespace
 
-namespace {
-// Multi: several bodies per node; one body has its loops over the bodies unrolled (as p2g_impl).
-template <bool Multi>
-void grid_update_impl(const GridView &G_, const GridUpdateParams &prm, GridStats &st_) {
-  // local copies (the node stores may alias them; as p2g_impl), the sums in registers
-  const GridView G = G_;
-  GridStats st = st_;
-  const int nbody = Multi ? G.nbody : 1;
-  // the square max_unbalanced is the root of (any square, while the maximum is not this pass's)
-  double f2max = st.max_unbalanced > 0 ? -HUGE_VAL : 0.0;
+void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) {
   const double dt = prm.dt, alpha = prm.damping_alpha;
   constexpr int ND = GridDof::NDOF;
   const PrescribedVelocity *pv =
@@ -259,7 +250,7 @@ void grid_update_impl(const GridView &G_, const GridUpdateParams &prm, GridStats
       // the node's totals over its bodies: the unbalanced force and the load are the sums (the
       // forces between bodies at a node cancel)
       double msum = 0.0, ftot[DIM] = {0.0, 0.0}, fext[DIM] = {0.0, 0.0};
-      for (int b = 0; b < nbody; ++b) {
+      for (int b = 0; b < G.nbody; ++b) {
         const double *node = node0 + b * ND;
         if (node[GridDof::M] <= 0.0) continue;
         msum += node[GridDof::M];
@@ -288,16 +279,13 @@ void grid_update_impl(const GridView &G_, const GridUpdateParams &prm, GridStats
       double f2 = 0.0; // |f_int + f_ext|^2 over the free dofs
       for (int d = 0; d < DIM; ++d)
         if (!held[d]) f2 += ftot[d] * ftot[d];
-      // a new maximum needs f2 above the square it was the root of (the rounded root is
-      // monotonic): most nodes skip the root, and the maximum is the same
-      if (f2 > f2max && std::sqrt(f2) > st.max_unbalanced) {
-        f2max = f2;
+      if (std::sqrt(f2) > st.max_unbalanced) {
         st.max_unbalanced = std::sqrt(f2);
         st.max_at[0] = G.origin[0] + i * G.h;
         st.max_at[1] = G.origin[1] + j * G.h;
       }
       // each body's own momentum balance
-      for (int b = 0; b < nbody; ++b) {
+      for (int b = 0; b < G.nbody; ++b) {
         double *node = node0 + b * ND;
         const double m = node[GridDof::M];
         if (m <= 0.0) continue;
@@ -326,15 +314,6 @@ void grid_update_impl(const GridView &G_, const GridUpdateParams &prm, GridStats
       }
     }
   }
-  st_ = st;
-}
-} // namespace
-
-void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) {
-  if (G.nbody > 1)
-    grid_update_impl<true>(G, prm, st);
-  else
-    grid_update_impl<false>(G, prm, st);
 }
 
 namespace {
