@@ -155,6 +155,11 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   for (size_t m = 0; fuse && m < sim.mats.size(); ++m)
     fuse = sim.mats[m].model->linear_elastic_rate(elastic[2 * m], elastic[2 * m + 1]);
   if (fuse) pp.elastic = elastic.data();
+  std::vector<double> energy;
+  if (fuse && sim.step_energy) {
+    for (const auto &m : sim.mats) energy.insert(energy.end(), {m.el.E, m.el.nu});
+    pp.energy = energy.data();
+  }
   PetscCall(GridGetLocal(g, false, G));
   if (!sim.set.musl) {
     g2p<Shape>(P, G, G1, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);

@@ -1,4 +1,5 @@
 #include "pmpm/grid.hpp"
+#include <algorithm>
 
 namespace pmpm {
 
@@ -28,8 +29,11 @@ PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[DIM],
     g.cell_lo[d] = g.s[d] == 0 ? 0 : g.s[d] - 1;
     g.cell_hi[d] = g.s[d] + g.m[d] == ncell[d] + 1 ? ncell[d] : g.s[d] + g.m[d] - 1;
   }
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  g.shared = size == 1;
   PetscCall(DMCreateLocalVector(g.da, &g.local));
-  PetscCall(DMCreateGlobalVector(g.da, &g.global));
+  if (!g.shared) PetscCall(DMCreateGlobalVector(g.da, &g.global));
   PetscFunctionReturn(0);
 }
 
@@ -52,6 +56,7 @@ void SetView(const Grid &g, bool ghosted, GridView &v) {
     v.gs[d] = ghosted ? g.gs[d] : g.s[d];
     v.gm[d] = ghosted ? g.gm[d] : g.m[d];
   }
+  v.ld = 0;
   v.nbody = g.nbody;
   v.nd = g.nd;
 }
@@ -75,19 +80,33 @@ PetscErrorCode GridRestoreLocal(Grid &g, GridView &v) {
 PetscErrorCode GridGetGlobal(Grid &g, GridView &v) {
   PetscFunctionBeginUser;
   SetView(g, false, v);
-  PetscCall(VecGetArray(g.global, &v.data));
+  if (!g.shared) {
+    PetscCall(VecGetArray(g.global, &v.data));
+    PetscFunctionReturn(0);
+  }
+  // the owned nodes inside the ghosted array: node (s[0], s[1]) onwards, rows of gm[0] nodes
+  double *a;
+  PetscCall(VecGetArray(g.local, &a));
+  v.ld = g.gm[0];
+  v.data = a + ((g.s[1] - g.gs[1]) * g.gm[0] + (g.s[0] - g.gs[0])) * g.nd;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode GridRestoreGlobal(Grid &g, GridView &v) {
   PetscFunctionBeginUser;
-  PetscCall(VecRestoreArray(g.global, &v.data));
+  if (!g.shared) {
+    PetscCall(VecRestoreArray(g.global, &v.data));
+  } else {
+    double *a = v.data - ((g.s[1] - g.gs[1]) * g.gm[0] + (g.s[0] - g.gs[0])) * g.nd;
+    PetscCall(VecRestoreArray(g.local, &a));
+  }
   v.data = nullptr;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode GridLocalToGlobalAdd(Grid &g) {
   PetscFunctionBeginUser;
+  if (g.shared) PetscFunctionReturn(0); // the local array holds the sums already
   PetscCall(VecZeroEntries(g.global));
   PetscCall(DMLocalToGlobalBegin(g.da, g.local, ADD_VALUES, g.global));
   PetscCall(DMLocalToGlobalEnd(g.da, g.local, ADD_VALUES, g.global));
@@ -96,18 +115,29 @@ PetscErrorCode GridLocalToGlobalAdd(Grid &g) {
 
 PetscErrorCode GridGlobalToLocal(Grid &g) {
   PetscFunctionBeginUser;
-  PetscCall(DMGlobalToLocalBegin(g.da, g.global, INSERT_VALUES, g.local));
-  PetscCall(DMGlobalToLocalEnd(g.da, g.global, INSERT_VALUES, g.local));
+  if (!g.shared) {
+    PetscCall(DMGlobalToLocalBegin(g.da, g.global, INSERT_VALUES, g.local));
+    PetscCall(DMGlobalToLocalEnd(g.da, g.global, INSERT_VALUES, g.local));
+  }
   // Ghost nodes outside the box are not part of the solve: the scatter leaves them holding this
   // rank's P2G sums, so zero them (a support reaching past the box sees v = a = 0 there).
+  // Row by row: a row outside the box whole, a row inside it its runs left and right of the box.
   double *a;
   PetscCall(VecGetArray(g.local, &a));
-  for (PetscInt j = g.gs[1]; j < g.gs[1] + g.gm[1]; ++j)
-    for (PetscInt i = g.gs[0]; i < g.gs[0] + g.gm[0]; ++i) {
-      if (i >= 0 && i <= g.ncell[0] && j >= 0 && j <= g.ncell[1]) continue;
-      double *node = a + ((j - g.gs[1]) * g.gm[0] + (i - g.gs[0])) * g.nd;
-      for (int k = 0; k < g.nd; ++k) node[k] = 0.0;
+  const PetscInt i0 = g.gs[0], i1 = g.gs[0] + g.gm[0];
+  auto zero = [&](PetscInt j, PetscInt lo, PetscInt hi) { // nodes [lo, hi) of row j
+    if (lo >= hi) return;
+    double *row = a + (j - g.gs[1]) * g.gm[0] * g.nd;
+    std::fill(row + (lo - i0) * g.nd, row + (hi - i0) * g.nd, 0.0);
+  };
+  for (PetscInt j = g.gs[1]; j < g.gs[1] + g.gm[1]; ++j) {
+    if (j < 0 || j > g.ncell[1]) {
+      zero(j, i0, i1);
+    } else {
+      zero(j, i0, std::min(i1, PetscInt(0)));
+      zero(j, std::max(i0, g.ncell[0] + 1), i1);
     }
+  }
   PetscCall(VecRestoreArray(g.local, &a));
   PetscFunctionReturn(0);
 }

@@ -125,6 +125,9 @@ PetscErrorCode InterfaceGridCreate(Grid &g, InterfaceGrid &ig) {
                          DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX, g.ncell[0] + 1, g.ncell[1] + 1, px,
                          py, GridDof::NDOF, 2, lx, ly, &ig.body.da));
   PetscCall(DMSetUp(ig.body.da));
+  // the body grid keeps its global vector on one rank too: cell_colour_normals writes the slots
+  // it reads from the neighbouring nodes
+  ig.body.shared = false;
   PetscCall(DMCreateLocalVector(ig.body.da, &ig.body.local));
   PetscCall(DMCreateGlobalVector(ig.body.da, &ig.body.global));
   ig.active = true;

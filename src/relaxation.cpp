@@ -58,20 +58,23 @@ double TractionPower(const ParticleView &P, const std::vector<ParticleLoad> &loa
   return pw;
 }
 
+// Elastic energy of the chains, on rank 0 only (every rank holds them: counted once).
+double ChainsElasticEnergy(const Simulation &sim) {
+  double u = 0;
+  if (sim.rank == 0)
+    for (const Chain &ch : sim.chains) u += chain_elastic_energy(ch);
+  return u;
+}
+
 // Elastic energy of this rank's particles: V sigma : C^-1 : sigma / 2 (plane strain, sigma_zz
-// kept), each material with its own E and nu.
+// kept), each material with its own E and nu (elastic_energy, material.hpp); and the chains'.
 double ElasticEnergy(const Simulation &sim, const ParticleView &P) {
   double u = 0;
   for (PetscInt p = 0; p < P.n; ++p) {
     const ElasticConstants &c = sim.mats[P.mat[p]].el;
-    const double *s = P.stress + p * NSTRESS;
-    const double sq = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
-    const double cross = s[0] * s[1] + s[1] * s[2] + s[2] * s[0];
-    u += P.vol[p] * ((sq - 2 * c.nu * cross) + 2 * (1 + c.nu) * s[3] * s[3]) / (2 * c.E);
+    u += elastic_energy(c.E, c.nu, P.vol[p], P.stress + p * NSTRESS);
   }
-  if (sim.rank == 0) // every rank holds the chains: count them once
-    for (const Chain &ch : sim.chains) u += chain_elastic_energy(ch);
-  return u;
+  return u + ChainsElasticEnergy(sim);
 }
 
 // The budget lives in RunState (budget_e0: kinetic + elastic energy before the stage's first
@@ -185,7 +188,11 @@ PetscErrorCode Relax(Simulation &sim) {
     ++run.step;
     load.factor = first && ramp > 0 ? std::fmin(1.0, double(k) / ramp) : 1.0;
     load.shrink = !first && k <= ramp ? sim.stage_shrink / double(ramp) : 0.0;
+    // the energy check's steps: G2P sums the particles' elastic energy if it can (one pass
+    // over the particles less; the same sum)
+    sim.step_energy = k % kEnergyEvery == 0;
     PetscCall(Step(sim, load, run.dt, rep));
+    sim.step_energy = false;
     { // the work of this step's loads (before a scene changes them in monitor)
       double pw = rep.g2p.weight_power;
       if (!sim.traction_idx.empty()) {
@@ -219,10 +226,15 @@ PetscErrorCode Relax(Simulation &sim) {
       run.ke_window = run.kinetic;
     }
     if (!why && k % kEnergyEvery == 0) {
-      ParticleView P;
-      PetscCall(ParticlesGetView(sim.parts, P));
-      double e[2] = {ElasticEnergy(sim, P), run.budget_w_local};
-      PetscCall(ParticlesRestoreView(sim.parts, P));
+      double e[2] = {0, run.budget_w_local};
+      if (rep.g2p.has_elastic) { // this rank's particles as G2P left them (before migrating)
+        e[0] = rep.g2p.elastic + ChainsElasticEnergy(sim);
+      } else {
+        ParticleView P;
+        PetscCall(ParticlesGetView(sim.parts, P));
+        e[0] = ElasticEnergy(sim, P);
+        PetscCall(ParticlesRestoreView(sim.parts, P));
+      }
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, e, 2, MPI_DOUBLE, MPI_SUM, sim.comm));
       const double held = run.kinetic + e[0], allowed = run.budget_e0 + e[1];
       if (!(held <= kEnergyFactor * allowed + run.budget_floor)) {

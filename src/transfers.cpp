@@ -71,7 +71,7 @@ void p2g_impl(const ParticleView &P, const Load &load_, const GridView &G_, cons
   const GridView G = G_;
   const Load load = load_;
   const int ND = Multi ? G.nd : GridDof::NDOF;
-  const PetscInt row = G.gm[0] * ND;
+  const PetscInt row = G.row() * ND;
   constexpr bool bodies = Multi;
   Stencil<Shape> S;
   const PetscInt n = idx ? nidx : P.n;
@@ -333,16 +333,16 @@ void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, co
   const int ND = Multi ? G0.nd : GridDof::NDOF;
   constexpr bool vel = mode != G2PMode::Kinematics, kin = mode != G2PMode::Velocity;
   const double dt = prm.dt, pic = prm.pic;
-  const PetscInt row = G0.gm[0] * ND; // G1 shares G0's layout
+  const PetscInt row = G0.row() * ND; // G1 shares G0's layout
   constexpr bool bodies = Multi;      // each particle reads its own body's block
   const double hx = G0.origin[0] + G0.ncell[0] * G0.h, hy = G0.origin[1] + G0.ncell[1] * G0.h;
   const double invh = 1.0 / G0.h;
   const double ox = G0.origin[0], oy = G0.origin[1];
   const double gd0 = prm.gdir[0], gd1 = prm.gdir[1];
-  const double *el = prm.elastic;
+  const double *el = prm.elastic, *en = prm.elastic ? prm.energy : nullptr;
   // the sums in registers (through st they were stored and reloaded every particle: the stores
   // into the particle arrays may alias them); the same order, the same sums
-  double c2max = 0, v2max = 0, kinetic = 0, weight_power = 0;
+  double c2max = 0, v2max = 0, kinetic = 0, weight_power = 0, elastic = 0;
   PetscInt left = 0;
   Stencil<Shape> S;
   for (PetscInt p = 0; p < P.n; ++p) {
@@ -408,6 +408,10 @@ void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, co
     F[3] = du[2] * F1 + (1.0 + du[3]) * F3;
     const double J = F[0] * F[3] - F[1] * F[2];
     P.vol[p] = J * P.vol0[p];
+    if (en) { // every particle, in order, as ElasticEnergy (relaxation.cpp)
+      const double *c = en + 2 * P.mat[p];
+      elastic += elastic_energy(c[0], c[1], P.vol[p], P.stress + p * NSTRESS);
+    }
     const double speed2 = v[0] * v[0] + v[1] * v[1];
     kinetic += 0.5 * P.mass[p] * speed2;
     if (Affine && vel) { // the affine part, with the D_p that B_p was just taken at
@@ -444,6 +448,10 @@ void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, co
     const PetscInt cell[DIM] = {static_cast<PetscInt>((x[0] - ox) * invh),
                                 static_cast<PetscInt>((x[1] - oy) * invh)};
     if (!grid->owns_cell(cell)) ++left;
+  }
+  if (kin && en) {
+    st->has_elastic = true;
+    st->elastic += elastic;
   }
   if (kin) {
     st->kinetic += kinetic;

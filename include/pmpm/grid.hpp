@@ -21,17 +21,21 @@ struct GridDof {
 };
 
 // A plain view of the ghosted local nodal array, for kernels: node (i, j) in global indices is
-// at data[((j - gs[1]) * gm[0] + (i - gs[0])) * nd]; body b's block starts b * NDOF further.
+// at data[((j - gs[1]) * row() + (i - gs[0])) * nd]; body b's block starts b * NDOF further.
+// A view of a part of an array (the owned nodes inside the ghosted array, Grid::shared) has rows
+// of ld nodes; a view of a whole array leaves ld = 0 (rows of gm[0] nodes).
 struct GridView {
   double h = 0;
   double origin[DIM] = {0, 0};
   PetscInt ncell[DIM] = {0, 0};
   PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0}; // ghosted start and size, node indices
+  PetscInt ld = 0;                             // nodes per row of data (0: gm[0])
   int nbody = 1;                               // bodies (blocks of NDOF) per node
   int nd = GridDof::NDOF;                      // values per node: nbody * NDOF + extra
   double *data = nullptr;
+  PetscInt row() const { return ld ? ld : gm[0]; }
   double *node(PetscInt i, PetscInt j) const {
-    return data + ((j - gs[1]) * gm[0] + (i - gs[0])) * nd;
+    return data + ((j - gs[1]) * row() + (i - gs[0])) * nd;
   }
 };
 
@@ -45,6 +49,10 @@ struct Grid {
   PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0};           // ghosted nodes
   PetscInt cell_lo[DIM] = {0, 0}, cell_hi[DIM] = {0, 0}; // owned cells [lo, hi)
   Vec local = nullptr, global = nullptr;
+  // One rank: the owned nodes are the ghosted array's interior (the ghosts are the two layers
+  // outside the box), so the global vector is not used: the ghost add and the scatter have
+  // nothing to move, and the grid update works in the local array (GridGetGlobal's view).
+  bool shared = false;
 
   // A particle centred in cell c is owned by the rank that owns node c + 1 (DMSwarm's rule).
   bool owns_cell(const PetscInt c[DIM]) const {
@@ -66,12 +74,14 @@ PetscErrorCode GridDestroy(Grid &g);
 // Zero the local vector and hand out a writable view of it (restore with GridRestoreLocal).
 PetscErrorCode GridGetLocal(Grid &g, bool zero, GridView &v);
 PetscErrorCode GridRestoreLocal(Grid &g, GridView &v);
-// A view of the owned nodes of the global vector (for the grid update).
+// A view of the owned nodes of the global vector (for the grid update); with shared, of the owned
+// nodes of the local vector (a view that aliases GridGetLocal's: read and write different slots).
 PetscErrorCode GridGetGlobal(Grid &g, GridView &v);
 PetscErrorCode GridRestoreGlobal(Grid &g, GridView &v);
-// Sum the ghosted local contributions into the global vector (ADD_VALUES).
+// Sum the ghosted local contributions into the global vector (ADD_VALUES); with shared, nothing.
 PetscErrorCode GridLocalToGlobalAdd(Grid &g);
-// Scatter owned values (and ghosts) back into the local vector.
+// Scatter owned values (and ghosts) back into the local vector, and zero the ghost nodes outside
+// the box; with shared, only the latter.
 PetscErrorCode GridGlobalToLocal(Grid &g);
 
 } // namespace pmpm

@@ -35,6 +35,15 @@ struct ElasticConstants {
   double M() const { return E * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu)); }
 };
 
+// Elastic energy of a particle of volume V under stress s (xx, yy, zz, xy): V s : C^-1 : s / 2
+// (plane strain, s_zz kept). One expression for relaxation's energy check (ElasticEnergy) and
+// for G2P, which sums it on the steps that check (G2PParams::energy): the same sums bit for bit.
+inline double elastic_energy(double E, double nu, double V, const double *s) {
+  const double sq = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
+  const double cross = s[0] * s[1] + s[1] * s[2] + s[2] * s[0];
+  return V * ((sq - 2 * nu * cross) + 2 * (1 + nu) * s[3] * s[3]) / (2 * E);
+}
+
 class Material {
 public:
   virtual ~Material() = default;

@@ -183,6 +183,9 @@ struct Simulation {
   std::vector<int> fbar_group;           // -fbar: each particle's cell and body (scratch)
   std::vector<double> fbar_sums;         // -fbar: volumes per group (scratch)
   std::vector<double> fbar_shift;        // -fbar: group pressure less the particle's (scratch)
+  // The next Step sums the particles' elastic energy in G2P when its stress update is fused
+  // there (relaxation's energy check; StepReport's g2p.has_elastic says whether it did).
+  bool step_energy = false;
   // Supports inside the box (transfers.hpp): nodal dofs at an imposed velocity, set by a scene,
   // and the weighted force the body put on them at the last step (global).
   PrescribedVelocity prescribed;

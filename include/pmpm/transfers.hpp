@@ -97,6 +97,10 @@ struct G2PParams {
   // writing dudx. Only when every material is LinearElastic and nothing else reads dudx (no
   // F-bar, no eigenstrain): cycle.cpp decides.
   const double *elastic = nullptr;
+  // With elastic: per material E and nu, and G2P also sums the particles' elastic energy
+  // (elastic_energy, material.hpp) of the stresses it updated into G2PStats::elastic: the pass
+  // over the particles that relaxation's energy check made every few steps, fused (null: none).
+  const double *energy = nullptr;
 };
 
 struct G2PStats {
@@ -109,6 +113,8 @@ struct G2PStats {
   PetscInt bad_pid = -1;       // the first such particle
   double bad_x[DIM] = {0, 0};
   const char *bad_what = "";
+  bool has_elastic = false; // G2PParams::energy given: elastic holds this rank's sum
+  double elastic = 0;
 };
 
 // USL in one pass: g2p_velocity and g2p_kinematics on the same nodal field. With P.B (APIC) the
