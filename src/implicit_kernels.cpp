@@ -43,6 +43,15 @@ void implicit_deformation(PetscInt n, const double *G, const double *F, double *
   }
 }
 
+void implicit_midpoint_gradient(PetscInt n, const double *G, double *Gm) {
+  for (PetscInt p = 0; p < n; ++p) {
+    const MatN g = mat_of(G + p * DIM * DIM);
+    const MatN gm = (MatN::Identity() + 0.5 * g).inverse() * g;
+    for (int a = 0; a < DIM; ++a)
+      for (int b = 0; b < DIM; ++b) Gm[p * DIM * DIM + a * DIM + b] = gm(a, b);
+  }
+}
+
 void implicit_piola(PetscInt n, const double *G, const double *stress, double *Pk) {
   for (PetscInt p = 0; p < n; ++p) {
     const MatN f = MatN::Identity() + mat_of(G + p * DIM * DIM);
@@ -87,6 +96,9 @@ void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
   const ElasticConstants &el = tm.el;
   const MatN I = MatN::Identity();
   const MatN f = I + mat_of(G), fi = f.inverse(), fiT = fi.transpose();
+  // the rate-form update reads the midpoint gradient Gm = (I + G/2)^-1 G, dGm = Hi dG Hi
+  const MatN Hi = (I + 0.5 * mat_of(G)).inverse(), Gm = Hi * mat_of(G);
+  const double gm[DIM * DIM] = {Gm(0, 0), Gm(0, 1), Gm(1, 0), Gm(1, 1)};
   const double J = f.determinant(), lam = el.lambda(), mu = el.G();
   const MatN sn = in_plane(s_new), so = in_plane(s_old);
   const MatN Fo = mat_of(Fn), Ft = f * Fo;
@@ -98,7 +110,7 @@ void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
   if (plastic) { // the trial stress exactly as predictor_corrector forms it
     so3 = stress_to_tensor(s_old);
     Mat3 de, dw;
-    strain_and_spin(G, de, dw);
+    strain_and_spin(gm, de, dw);
     if (eigen)
       for (int d = 0; d < 3; ++d) de(d, d) -= eigen[d];
     const Mat3 s_tr = jaumann_rotate(so3, dw) + elastic_increment(el, de);
@@ -117,8 +129,8 @@ void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
         const MatN dtau = mu * (dF * Ft.transpose() + Ft * dF.transpose()) + lam * dtr * I;
         dP = (dtau - tau * fiT * dG.transpose()) * fiT / Jn;
       } else if (plastic) {
-        double g[DIM * DIM] = {0, 0, 0, 0};
-        g[b * DIM + l] = 1.0;
+        const MatN dGm = Hi * dG * Hi;
+        const double g[DIM * DIM] = {dGm(0, 0), dGm(0, 1), dGm(1, 0), dGm(1, 1)};
         Mat3 de, dw;
         strain_and_spin(g, de, dw);
         const Mat3 ds3 = D.apply(dw * so3 - so3 * dw + elastic_increment(el, de));
@@ -126,8 +138,9 @@ void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
         ds << ds3(0, 0), ds3(0, 1), ds3(1, 0), ds3(1, 1);
         dP = J * (dtr * sn + ds - sn * fiT * dG.transpose()) * fiT;
       } else {
-        const MatN dW = 0.5 * (dG - dG.transpose()), de = 0.5 * (dG + dG.transpose());
-        const MatN ds = dW * so - so * dW + lam * dG.trace() * I + 2.0 * mu * de;
+        const MatN dGm = Hi * dG * Hi;
+        const MatN dW = 0.5 * (dGm - dGm.transpose()), de = 0.5 * (dGm + dGm.transpose());
+        const MatN ds = dW * so - so * dW + lam * dGm.trace() * I + 2.0 * mu * de;
         dP = J * (dtr * sn + ds - sn * fiT * dG.transpose()) * fiT;
       }
       for (int a = 0; a < DIM; ++a)

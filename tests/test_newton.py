@@ -10,8 +10,9 @@ ratio -tol 1e-7 on the same discrete equations, so they differ by relaxation's r
 (measured 4.9e-5 of the stress, 4.7e-5 of the settlement; bound 1e-3). Large deformation: F is
 integrated along different paths (10 load steps against 2300 explicit steps), first order in the
 load-step size (measured 1.5 % of the stress at 10 steps, 0.30 % at 40; bound 3 %). A consistent
-tangent converges in one or two Newton iterations per linear-elastic load step and at most four
-for neo-Hookean (measured 1.0 and 2.4). -snes_test_jacobian: ||J - J_fd|| / ||J|| is the finite
+tangent converges in two Newton iterations per linear-elastic load step (the midpoint increment
+makes the residual mildly nonlinear in du; measured 1.9, bound 2.5) and at most four for
+neo-Hookean (measured 2.4). -snes_test_jacobian: ||J - J_fd|| / ||J|| is the finite
 differences' own error, 2e-8 measured; a wrong term gives >= 1e-3 (bound 1e-6). The adaptive
 load steps (-newton_cell_fraction) on the 128-cell column: see the comment at that case.
 """
@@ -45,16 +46,24 @@ c.le("column L2 stress error", r["stress_l2_error_rel"], 0.02)
 c.le("column L2 displacement error", r["displacement_l2_error_rel"], 1e-3)
 settle = r["top_settlement_exact"]
 c.le("column top settlement error", abs(r["top_settlement"] - settle) / settle, 1e-3)
-c.le("column Newton iterations per load step", n["nonlinear_iterations"] / n["load_steps"], 2.0)
+c.le("column Newton iterations per load step", n["nonlinear_iterations"] / n["load_steps"], 2.5)
 dx, ds = compare(out + "/column", out + "/column_relax")
 c.le("column vs relaxation: positions / settlement", dx / settle, 1e-3)
 c.le("column vs relaxation: stress (L2, relative)", ds, 1e-3)
 
-# the load-step error at 128 cells: 10 steps move the top 0.0095 cells each and leave a
-# displacement error of 5.5e-5 (relaxation 5.9e-6); -newton_cell_fraction 0.001 sizes 96 steps from
-# the first one's motion (0.095 cells per unit load) and brings it to 8.4e-6 (bound 2e-5). On 1
+# the load-step error at 128 cells. The rate-form update reads the midpoint gradient of the step
+# (README "Implicit solver (Newton)"), second order in the step: one load step leaves a
+# displacement error of 6.7e-6 (relaxation 5.9e-6; the step-start gradient, first order, left
+# 5.4e-4 with one step and 5.5e-5 with ten). Bound 2e-5, as for -newton_cell_fraction 0.001, which
+# sizes 96 steps from the first one's motion (0.095 cells per unit load; measured 4.9e-6). On 1
 # rank only (a property of the discretisation; the 2-rank test checks rank invariance below).
 if np_ == 1:
+    run(exe, np_, ["-options_file", "options/column.opts", "-cell_size", "0.0078125",
+                   "-newton_load_steps", "1"] + NEWTON, out + "/column128_one")
+    s = summary(out + "/column128_one")
+    c.check("128-cell column, one load step: converged", s["converged"] is True)
+    c.le("128-cell column, one load step: L2 displacement error",
+         s["results"]["displacement_l2_error_rel"], 2e-5)
     run(exe, np_, ["-options_file", "options/column.opts", "-cell_size", "0.0078125",
                    "-newton_cell_fraction", "0.001"] + NEWTON, out + "/column128")
     s = summary(out + "/column128")

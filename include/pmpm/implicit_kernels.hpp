@@ -61,6 +61,10 @@ void implicit_gradient(const ParticleView &P, const NodalView &U, const NodalVie
 // Trial kinematics for the material batch: F_new = (I + G) F^n per particle.
 void implicit_deformation(PetscInt n, const double *G, const double *F, double *Fnew);
 
+// The midpoint increment gradient Gm = (I + G/2)^-1 G = G (I + G/2)^-1 per particle: the gradient
+// of du with respect to the step's midpoint configuration x^n + du/2 (Hughes and Winget 1980).
+void implicit_midpoint_gradient(PetscInt n, const double *G, double *Gm);
+
 // P = J sigma' f^-T (in-plane DIM x DIM, row-major) from G and the trial Cauchy stress.
 void implicit_piola(PetscInt n, const double *G, const double *stress, double *Pk);
 

@@ -28,11 +28,13 @@ void piola_of(const Material &m, const double *G, const double *s_old, const dou
   double s[NSTRESS], F[4];
   for (int k = 0; k < NSTRESS; ++k) s[k] = s_old[k];
   implicit_deformation(1, G, Fn, F);
+  double Gmid[4]; // the rate-form update reads the midpoint gradient, as newton.cpp passes it
+  implicit_midpoint_gradient(1, G, Gmid);
   const int idx = 0;
   StressBatch b;
   b.n = 1;
   b.idx = &idx;
-  b.dudx = G;
+  b.dudx = Gmid;
   b.F = F;
   b.stress = s;
   b.eps_p = &ep;
@@ -82,7 +84,9 @@ void test_tangent(TangentKind kind) {
 // 2 DP cut-off, 3 DP corner (cone and cut-off), 4 DP apex, 5 DP apex clamped to the cut-off.
 int branch_of(const TangentModel &tm, const double *G, const double *s_old, double ep) {
   Mat3 de, dw;
-  strain_and_spin(G, de, dw);
+  double Gmid[4];
+  implicit_midpoint_gradient(1, G, Gmid);
+  strain_and_spin(Gmid, de, dw);
   Mat3 s = jaumann_rotate(stress_to_tensor(s_old), dw) + elastic_increment(tm.el, de);
   const ReturnResult r = tm.kind == TangentKind::VonMises
                              ? von_mises_return(tm.vm, s, ep)
