@@ -10,14 +10,26 @@
    the options file's -tol (unbalanced-force ratio 1e-7): wall time of the solve (summary.json
    wall_seconds), explicit steps or load steps / Newton / linear iterations, and the errors
    against the exact solutions.
-2. The linear solver under Newton on the largest problem at hand, the bonded landfill at
-   h = 0.5 mm (options/landfill.opts, 60 x 80 cells, 18,720 particles, about 9,800 unknowns):
-   MUMPS LU (default AMD ordering, and METIS by -mat_mumps_icntl_7 5), GMRES with GAMG and with
-   hypre BoomerAMG, beside relaxation.
+2. The linear solver under Newton on the bonded landfill at h = 0.5 mm (options/landfill.opts,
+   60 x 80 cells, 18,720 particles, about 9,800 unknowns): MUMPS LU (default AMD ordering, and
+   METIS by -mat_mumps_icntl_7 5), GMRES with GAMG and with hypre BoomerAMG, beside relaxation.
+3. The bonded landfill at h = 1, 0.5, 0.25 and 0.125 mm: relaxation (its load ramp scaled with the
+   mesh as README's table: 1000 steps at 0.5 mm, 2000 at 0.25, 4000 at 0.125) against Newton in
+   one load step (GMRES + BoomerAMG), errors against the converged answer (README: settlement
+   2.958 mm at X = 15 mm, peak membrane strain 1.76 %).
+4. A cover with stages: the shrinking cover column (tests/cover_column.opts, its sheet bonded, two
+   shrinkage stages of e_v = 0.05) at 0.25, 0.125 and 0.0625 m cells, each solver; error of the
+   last stage's waste settlement against the closed form (test_newton_stages.py).
+bench/newton.png: error against wall time for all of them (one plot).
 One rank each (the study is the method's cost, not its parallel speed-up).
 """
 import argparse
+import csv
+import math
 from pathlib import Path
+
+import h5py
+import numpy as np
 
 from benchmarks_md import publish, run_pmpm
 
@@ -52,7 +64,8 @@ def column_study(cells, quick):
         frac, upto = ADAPTIVE[opts]
         for n in cells:
             h = 1.0 / n
-            variants = [("relaxation", []), ("newton", [])]
+            variants = [("relaxation", []), ("newton", []),
+                        ("newton, 1 load step", ["-newton_load_steps", 1])]
             if n <= upto:
                 variants.append((f"newton, cell fraction {frac}",
                                  ["-newton_cell_fraction", frac]))
@@ -95,23 +108,92 @@ def landfill_study():
     return rows
 
 
-def plot(rows, path):
+# the converged landfill (README "Landfill results beside the paper's": the two finest meshes)
+LANDFILL_SETTLE, LANDFILL_STRAIN = 2.958e-3, 1.76e-2
+HYPRE = ["-ksp_type", "gmres", "-pc_type", "hypre", "-ksp_rtol", 1e-6]
+
+
+def landfill_resolutions(hs):
+    rows = []
+    for h in hs:
+        ramp = max(1000, int(round(1000 * 0.5e-3 / h)))
+        for label, extra in (("relaxation", ["-ramp_steps", ramp]),
+                             ("newton, 1 load step, hypre",
+                              ["-solver", "newton", "-newton_load_steps", 1] + HYPRE)):
+            d = OUT / f"landfill_h{h * 1e6:.0f}um_{label.split(',')[0]}"
+            s = run(["-options_file", "options/landfill.opts", "-cell_size", h] + extra, d)
+            if s is None:
+                continue
+            r = s["results"]
+            rows.append(dict(h=h, solver=label, seconds=s["wall_seconds"], work=work(s),
+                             conv=s["converged"], settle=r["settlement_centre"],
+                             strain=r["peak_axial_strain"],
+                             err=abs(r["settlement_centre"] / LANDFILL_SETTLE - 1),
+                             err_strain=abs(r["peak_axial_strain"] / LANDFILL_STRAIN - 1)))
+            print(f"  landfill h = {h * 1e3:g} mm {label}: {s['wall_seconds']:.2f} s, {work(s)}, "
+                  f"settlement {r['settlement_centre'] * 1e3:.4f} mm, peak strain "
+                  f"{r['peak_axial_strain'] * 100:.3f} %", flush=True)
+    return rows
+
+
+def waste_top(d, k):
+    """Mean height of the top row of waste particles at the end of stage k."""
+    with h5py.File(d / f"series/stage_{k:03d}.h5", "r") as f:
+        x, x0 = f["particles/position"][:], f["particles/position0"][:]
+        m = f["particles/material"][:].ravel()
+    w = m == 0
+    sel = w & (np.abs(x0[:, 1] - x0[w, 1].max()) < 1e-9)
+    return x[sel, 1].mean()
+
+
+def cover_stages(hs):
+    rows = []
+    ev = 0.05  # per stage (tests/cover_column.opts: 0.1 in two stages)
+    for h in hs:
+        for label, extra in (("relaxation", []), ("newton", ["-solver", "newton"])):
+            d = OUT / f"cover_h{h:g}_{label}"
+            s = run(["-options_file", "tests/cover_column.opts", "-chain_hdpe_interface", "bonded",
+                     "-cover_geostatic_paper", "false", "-cell_size", h] + extra, d)
+            if s is None:
+                continue
+            with open(d / "stages.csv") as f:
+                st = list(csv.DictReader(f))
+            y = [waste_top(d, k) for k in range(3)]
+            exact = y[1] * (1 - math.exp(-ev))
+            err = abs((y[1] - y[2]) / exact - 1)
+            steps = "+".join(q["steps"] for q in st)
+            rows.append(dict(h=h, solver=label, seconds=s["wall_seconds"], steps=steps,
+                             conv=s["converged"], err=err))
+            print(f"  cover column h = {h:g} m {label}: {s['wall_seconds']:.2f} s, {steps} steps, "
+                  f"stage-2 settlement error {err:.3g}", flush=True)
+    return rows
+
+
+def plot_error_time(rows, frows, crows, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
-    for i, opts in enumerate(("column", "column_large")):
-        labels = list(dict.fromkeys(r["solver"] for r in rows if r["opts"] == opts))
-        for solver, mk in zip(labels, ("o-", "s-", "^--")):
-            pts = [(r["cells"], r["seconds"]) for r in rows
-                   if r["opts"] == opts and r["solver"] == solver]
-            if pts:
-                ax[i].loglog(*zip(*pts), mk, label=solver)
-        ax[i].set_title(f"options/{opts}.opts")
-        ax[i].set_xlabel("cells over the height")
-        ax[i].set_ylabel("wall time to equilibrium (s)")
-        ax[i].grid(True, which="both", alpha=0.3)
-        ax[i].legend()
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    series = []
+    for solver, mk in (("relaxation", "o-"), ("newton", "s--"), ("newton, 1 load step", "^:")):
+        series.append((f"column displacement, {solver}", mk,
+                       [(r["seconds"], r["disp"]) for r in rows
+                        if r["opts"] == "column" and r["solver"] == solver]))
+    for solver, mk in (("relaxation", "o-"), ("newton, 1 load step, hypre", "s--")):
+        series.append((f"landfill settlement, {solver}", mk,
+                       [(r["seconds"], r["err"]) for r in frows if r["solver"] == solver]))
+    for solver, mk in (("relaxation", "o-"), ("newton", "s--")):
+        series.append((f"cover column, stage 2 settlement, {solver}", mk,
+                       [(r["seconds"], r["err"]) for r in crows if r["solver"] == solver]))
+    for label, mk, pts in series:
+        pts = [p for p in pts if p[1] > 0]
+        if pts:
+            ax.loglog(*zip(*pts), mk, label=label)
+    ax.set_xlabel("wall time to equilibrium, 1 rank (s)")
+    ax.set_ylabel("relative error (exact or converged answer)")
+    ax.set_title("Newton against relaxation: error against time (finer meshes to the right)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     print(f"wrote {path}")
@@ -125,8 +207,10 @@ def main():
     cells = (16, 32) if a.quick else (16, 32, 64, 128)
     rows = column_study(cells, a.quick)
     lrows = [] if a.quick else landfill_study()
+    frows = landfill_resolutions((1e-3, 5e-4) if a.quick else (1e-3, 5e-4, 2.5e-4, 1.25e-4))
+    crows = cover_stages((0.25,) if a.quick else (0.25, 0.125, 0.0625))
     png = ROOT / "bench" / "newton.png" if not a.quick else OUT / "newton.png"
-    plot(rows, png)
+    plot_error_time(rows, frows, crows, png)
     md = [MARK_BEGIN, "## Implicit solver: Newton against relaxation (bench/newton.py)", "",
           "One rank; wall time of the solve to the options file's -tol (unbalanced-force ratio "
           "1e-7 for the columns, 1e-5 for the landfill, the same test for both solvers); work is "
@@ -139,7 +223,35 @@ def main():
         md.append(f"| {r['case']} | {r['cells']} | {r['solver']} | {r['seconds']:.3f} | "
                   f"{r['work']} | {'yes' if r['conv'] else 'NO'} | {r['stress']:.4g} | "
                   f"{r['disp']:.4g} |")
-    md += ["", "![time to equilibrium](bench/newton.png)", ""]
+    md += ["", "![error against time](bench/newton.png)", ""]
+    md += ["Bonded landfill at four resolutions (options/landfill.opts; relaxation's load ramp "
+           "scaled with the mesh; errors against the converged answer, settlement 2.958 mm, peak "
+           "membrane strain 1.76 %, README; the peak strain's own spread between the two finest "
+           "meshes is 2.4 %):", "",
+           "| h (mm) | solver | seconds | work | converged | settlement (mm) | error | "
+           "peak strain (%) | error |", "|---|---|---|---|---|---|---|---|---|"]
+    for r in frows:
+        md.append(f"| {r['h'] * 1e3:g} | {r['solver']} | {r['seconds']:.2f} | {r['work']} | "
+                  f"{'yes' if r['conv'] else 'NO'} | {r['settle'] * 1e3:.4f} | "
+                  f"{r['err'] * 100:.2f} % | {r['strain'] * 100:.3f} | "
+                  f"{r['err_strain'] * 100:.1f} % |")
+    speed = [(h, next(r["seconds"] for r in frows if r["h"] == h and r["solver"] == "relaxation")
+              / next(r["seconds"] for r in frows if r["h"] == h and r["solver"] != "relaxation"))
+             for h in sorted({r["h"] for r in frows})
+             if sum(1 for r in frows if r["h"] == h) == 2]
+    if speed:
+        md += ["", "Newton's speed-up over relaxation: " + ", ".join(
+            f"{x:.1f}x at h = {h * 1e3:g} mm" for h, x in speed) + "."]
+    md += ["", "A cover with stages: the shrinking cover column (tests/cover_column.opts, sheet "
+           "bonded, two shrinkage stages of e_v = 0.05 after the geostatic stage); error: the "
+           "second stage's waste settlement against the closed form; steps per stage (geostatic + "
+           "stage 1 + stage 2: explicit steps, or load steps with the equilibrium steps):", "",
+           "| h (m) | solver | seconds | steps per stage | converged | error |",
+           "|---|---|---|---|---|---|"]
+    for r in crows:
+        md.append(f"| {r['h']:g} | {r['solver']} | {r['seconds']:.2f} | {r['steps']} | "
+                  f"{'yes' if r['conv'] else 'NO'} | {r['err'] * 100:.2f} % |")
+    md.append("")
     if lrows:
         md += ["Bonded landfill, h = 0.5 mm (options/landfill.opts; converged reference: "
                "settlement 2.958 mm, peak membrane strain 1.76 %, README):", "",
