@@ -721,7 +721,8 @@ PetscErrorCode NewtonSetup(Simulation &sim) {
   ns->rtol_given = set;
   PetscCall(SNESGetTolerances(ns->snes, nullptr, &ns->rtol, nullptr, nullptr, nullptr));
   // read by SNESSolve, after main's unused-option check: mark them used here
-  for (const char *o : {"-snes_test_jacobian", "-snes_test_jacobian_view"})
+  for (const char *o :
+       {"-snes_test_jacobian", "-snes_test_jacobian_view", "-snes_converged_reason"})
     PetscCall(PetscOptionsHasName(nullptr, nullptr, o, &set));
   PetscFunctionReturn(0);
 }
