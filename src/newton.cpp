@@ -648,8 +648,7 @@ PetscErrorCode NewtonSetup(Simulation &sim) {
                             nullptr, ns->max_equilibrium, &ns->max_equilibrium, nullptr));
   PetscCall(PetscOptionsReal("-cell_fraction",
                              "Adaptive load steps: the largest displacement increment of a step "
-                             "in cells, 0 <= f <= 1 (0: off, the -newton_load_steps equal steps; "
-                             "the load-step error of the particle path is first order in it)",
+                             "in cells, 0 <= f <= 1 (0: off, the -newton_load_steps equal steps)",
                              nullptr, ns->cell_fraction, &ns->cell_fraction, nullptr));
   PetscOptionsEnd();
   PetscCheck(ns->cell_fraction >= 0 && ns->cell_fraction <= 1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
