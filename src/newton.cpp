@@ -38,8 +38,11 @@ struct NewtonSolver {
   Vec U = nullptr, R = nullptr, fext = nullptr, maskG = nullptr;
   Vec Uloc = nullptr, Rloc = nullptr, maskL = nullptr;
   PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0}, s[DIM] = {0, 0}, m[DIM] = {0, 0};
-  PetscInt load_steps = 10, max_cuts = 6, max_equilibrium = 10;
+  PetscInt load_steps = 10, max_cuts = 6, max_equilibrium = 30;
   double cell_fraction = 0; // -newton_cell_fraction: largest |du| / h of a load step (0: off)
+  double small_cut = 1e-9;  // -newton_small_cut: a node below this share of the largest nodal
+                            // mass is held (its stiffness would be of the order of this share
+                            // squared: a small cut that only adds round-off to the solve)
   double frac = 0;          // the last solve's max |du| / h over the free dofs
   bool atol_given = false;  // -snes_atol given: keep it; else set per step from the load
   bool rtol_given = false;  // -snes_rtol given: every solve keeps it
@@ -63,7 +66,6 @@ PetscLogEvent ev_residual, ev_jacobian, ev_solve, ev_commit;
 
 // A node with less mass than this share of the largest nodal mass is held (its stiffness would be
 // of the order of this share squared: a small cut that only adds round-off to the solve).
-constexpr double kSmallCut = 1e-9;
 // Without -snes_atol, a load step's solve stops when |R|_2 <= kAtolShare x -tol x |f_ext|_2 (well
 // inside relaxation's criterion, which the equilibrium steps then check on the reset grid).
 constexpr double kAtolShare = 1e-3;
@@ -333,7 +335,7 @@ PetscErrorCode Loads(NewtonSolver &ns) {
       const PetscInt q = ((j - ns.s[1]) * ns.m[0] + (i - ns.s[0])) * DIM;
       bool held[DIM];
       held_dofs(i, j, sim.ncell, sim.face, held);
-      const bool supported = body_sum(node, GridDof::M) > kSmallCut * mmax;
+      const bool supported = body_sum(node, GridDof::M) > ns.small_cut * mmax;
       for (int a = 0; a < DIM; ++a) {
         f[q + a] = body_sum(node, GridDof::FEXT + a);
         mk[q + a] = supported && !held[a] ? 1.0 : 0.0;
@@ -650,7 +652,13 @@ PetscErrorCode NewtonSetup(Simulation &sim) {
                              "Adaptive load steps: the largest displacement increment of a step "
                              "in cells, 0 <= f <= 1 (0: off, the -newton_load_steps equal steps)",
                              nullptr, ns->cell_fraction, &ns->cell_fraction, nullptr));
+  PetscCall(PetscOptionsReal("-small_cut",
+                             "Nodes with less than this share of the largest nodal mass are held "
+                             "(du = 0: the small-cut nodes), 0 <= s < 0.1",
+                             nullptr, ns->small_cut, &ns->small_cut, nullptr));
   PetscOptionsEnd();
+  PetscCheck(ns->small_cut >= 0 && ns->small_cut < 0.1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-newton_small_cut must be in [0, 0.1) (got %g)", ns->small_cut);
   PetscCheck(ns->cell_fraction >= 0 && ns->cell_fraction <= 1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-newton_cell_fraction must be in [0, 1] (got %g; 0: off)", ns->cell_fraction);
   PetscCheck(ns->load_steps >= 1 && ns->load_steps <= 100000, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
