@@ -393,9 +393,11 @@ class CoverScene final : public Scene {
     PetscCheck(shrink_steps_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-cover_shrink_steps must be >= 0");
     // -solver newton solves bonded chains only (newton.cpp checks their own faces): the
-    // geostatic stage's paper faces would be a frictional interface in stage 0
-    PetscCheck(!(sim.set.solver == Solver::Newton && geostatic_paper_ && !mem_.empty()), sim.comm,
-               PETSC_ERR_SUP,
+    // geostatic stage's paper faces would be a frictional interface in stage 0 (-help only lists)
+    PetscBool help = PETSC_FALSE;
+    PetscCall(PetscOptionsHasHelp(nullptr, &help));
+    PetscCheck(help || !(sim.set.solver == Solver::Newton && geostatic_paper_ && !mem_.empty()),
+               sim.comm, PETSC_ERR_SUP,
                "-solver newton needs the membranes bonded in every stage, and "
                "-cover_geostatic_paper (on by default) runs stage 0 with paper faces: add "
                "-cover_geostatic_paper false (with -chain_<name>_interface bonded), or use "
