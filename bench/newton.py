@@ -18,7 +18,8 @@
    one load step (GMRES + BoomerAMG), errors against the converged answer (README: settlement
    2.958 mm at X = 15 mm, peak membrane strain 1.76 %).
 4. A cover with stages: the shrinking cover column (tests/cover_column.opts, its sheet bonded, two
-   shrinkage stages of e_v = 0.05) at 0.25, 0.125 and 0.0625 m cells, each solver; error of the
+   shrinkage stages of e_v = 0.05) at 0.25, 0.125 and 0.0625 m cells, relaxation, Newton with its
+   defaults (10 load steps a stage, MUMPS LU) and with 2 load steps and BoomerAMG; error of the
    last stage's waste settlement against the closed form (test_newton_stages.py).
 bench/newton.png: error against wall time for all of them (one plot).
 One rank each (the study is the method's cost, not its parallel speed-up).
@@ -150,8 +151,10 @@ def cover_stages(hs):
     rows = []
     ev = 0.05  # per stage (tests/cover_column.opts: 0.1 in two stages)
     for h in hs:
-        for label, extra in (("relaxation", []), ("newton", ["-solver", "newton"])):
-            d = OUT / f"cover_h{h:g}_{label}"
+        for label, extra in (("relaxation", []), ("newton", ["-solver", "newton"]),
+                             ("newton, 2 load steps, hypre",
+                              ["-solver", "newton", "-newton_load_steps", 2] + HYPRE)):
+            d = OUT / f"cover_h{h:g}_{label.split(',')[0]}{'_hypre' if 'hypre' in label else ''}"
             s = run(["-options_file", "tests/cover_column.opts", "-chain_hdpe_interface", "bonded",
                      "-cover_geostatic_paper", "false", "-cell_size", h] + extra, d)
             if s is None:
@@ -182,7 +185,8 @@ def plot_error_time(rows, frows, crows, path):
     for solver, mk in (("relaxation", "o-"), ("newton, 1 load step, hypre", "s--")):
         series.append((f"landfill settlement, {solver}", mk,
                        [(r["seconds"], r["err"]) for r in frows if r["solver"] == solver]))
-    for solver, mk in (("relaxation", "o-"), ("newton", "s--")):
+    for solver, mk in (("relaxation", "o-"), ("newton", "s--"),
+                       ("newton, 2 load steps, hypre", "^:")):
         series.append((f"cover column, stage 2 settlement, {solver}", mk,
                        [(r["seconds"], r["err"]) for r in crows if r["solver"] == solver]))
     for label, mk, pts in series:
