@@ -59,3 +59,24 @@ class Checks:
     def done(self):
         print(f"{self.name}: {self.passed} passed, {self.failed} failed")
         sys.exit(1 if self.failed or not self.passed else 0)
+
+
+def stages(out):
+    """The rows of a staged run's stages.csv."""
+    import csv
+    with open(os.path.join(out, "stages.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+def waste_top(out, k):
+    """Mean height of the top row of waste particles (material 0) at the end of stage k."""
+    import h5py
+    import numpy as np
+    with h5py.File(os.path.join(out, f"series/stage_{k:03d}.h5"), "r") as f:
+        x = f["particles/position"][:]
+        x0 = f["particles/position0"][:]
+        m = f["particles/material"][:].ravel()
+    w = m == 0
+    top = x0[w, 1].max()
+    sel = w & (np.abs(x0[:, 1] - top) < 1e-9)
+    return x[sel, 1].mean()

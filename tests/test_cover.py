@@ -28,34 +28,14 @@ usage: test_cover.py EXE NP OUTDIR
    kinetic-damping resets and the sheet's stick / slip switches are discrete events that amplify
    the ghost sums' round-off; 1e-4 is ten times below what -tol 1e-3 resolves).
 """
-import csv
 import math
-import os
 import sys
 
-import h5py
 import numpy as np
-from pmpmtest import Checks, run, summary
+from pmpmtest import Checks, run, stages, summary, waste_top
 
 exe, np_, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 c = Checks(f"cover_np{np_}")
-
-
-def stages(d):
-    with open(os.path.join(d, "stages.csv")) as f:
-        return list(csv.DictReader(f))
-
-
-def waste_top(d, k):
-    """Mean height of the top row of waste particles at the end of stage k."""
-    with h5py.File(os.path.join(d, f"series/stage_{k:03d}.h5"), "r") as f:
-        x = f["particles/position"][:]
-        x0 = f["particles/position0"][:]
-        m = f["particles/material"][:].ravel()
-    w = m == 0
-    top = x0[w, 1].max()
-    sel = w & (np.abs(x0[:, 1] - top) < 1e-9)
-    return x[sel, 1].mean()
 
 
 # 1. uniform degradation

@@ -23,15 +23,12 @@ usage: test_newton_stages.py EXE NP OUTDIR
 4. 2 ranks: the column and the landfill chain (h = 2 mm) against 1 rank within 1e-6 relative
    (MUMPS round-off; measured 1e-14 of the settlement).
 """
-import csv
 import math
-import os
 import re
 import sys
 
-import h5py
 import numpy as np
-from pmpmtest import Checks, run, summary
+from pmpmtest import Checks, run, stages, summary, waste_top
 
 exe, np_, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 c = Checks(f"newton_stages_np{np_}")
@@ -40,23 +37,6 @@ BONDED = ["-options_file", "tests/cover_column.opts", "-chain_hdpe_interface", "
           "-cover_geostatic_paper", "false"]
 CHAIN = ["-options_file", "options/landfill.opts", "-landfill_membrane_chain", "-interface_type",
          "bonded"]
-
-
-def stages(d):
-    with open(os.path.join(d, "stages.csv")) as f:
-        return list(csv.DictReader(f))
-
-
-def waste_top(d, k):
-    """Mean height of the top row of waste particles at the end of stage k."""
-    with h5py.File(os.path.join(d, f"series/stage_{k:03d}.h5"), "r") as f:
-        x = f["particles/position"][:]
-        x0 = f["particles/position0"][:]
-        m = f["particles/material"][:].ravel()
-    w = m == 0
-    top = x0[w, 1].max()
-    sel = w & (np.abs(x0[:, 1] - top) < 1e-9)
-    return x[sel, 1].mean()
 
 
 # 1. the shrinking column
