@@ -48,6 +48,7 @@ struct NewtonSolver {
   bool rtol_given = false;  // -snes_rtol given: every solve keeps it
   double rtol = 1e-10;      // a load step's relative tolerance (-snes_rtol)
   double lambda = 0;        // load factor of the current solve
+  double t_stage = 0;       // wall time at the stage's start (the progress lines' ETA)
   double shrink = 0;        // the current load step's share of the stage's shrinkage
   double kref = 1;          // diagonal of held and unsupported dofs (Pa: the stiffness scale)
   std::vector<TangentModel> model; // per material: what its consistent tangent needs
@@ -558,9 +559,15 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
     PetscCall(SNESGetFunctionNorm(ns.snes, &rn));
     PetscCall(PetscPrintf(sim.comm,
                           "  load step %4" PetscInt_FMT "  %s %.4f  Newton its %2" PetscInt_FMT
-                          "  linear its %3" PetscInt_FMT "  |R| %.3e  max|du|/h %.2e  (%s)\n",
+                          "  linear its %3" PetscInt_FMT "  |R| %.3e  max|du|/h %.2e  (%s)",
                           sim.run.load_steps, path.ramp_loads ? "load" : "stage", t1, its, lits, rn,
                           ns.frac, SNESConvergedReasons[*reason]));
+    // the load steps' ETA: the stage's time so far over the path covered (the equilibrium steps
+    // that follow are cheaper: one Newton iteration each)
+    const double spent = MPI_Wtime() - ns.t_stage;
+    if (!equilibrium && t1 < 1.0)
+      PetscCall(PetscPrintf(sim.comm, "  load steps ETA %.0f s", spent * (1.0 - t1) / t1));
+    PetscCall(PetscPrintf(sim.comm, "\n"));
   }
   PetscCall(sim.scene->monitor(sim));
   PetscFunctionReturn(0);
@@ -758,6 +765,7 @@ PetscErrorCode Newton(Simulation &sim) {
   run.converged = false;
   run.stage_step = 0;
   const double t_start = MPI_Wtime();
+  ns.t_stage = t_start;
   // the stage's load path (CheckSupported refused the other changes; a scene's begin_stage may
   // not switch a chain's faces from bonded either)
   const StageChange change = sim.scene->stage_change(sim.stage);
@@ -827,6 +835,10 @@ PetscErrorCode Newton(Simulation &sim) {
   }
   // equilibrium steps on the reset grid until relaxation's criterion holds
   PetscCall(StaticResidual(sim, s.shape, &run.ratio));
+  if (!s.quiet)
+    PetscCall(PetscPrintf(sim.comm,
+                          "  after the load steps: unbalanced-force ratio %.3e (-tol %g)\n",
+                          run.ratio, s.tol));
   for (PetscInt k = 0; k < ns.max_equilibrium && !(run.ratio <= s.tol); ++k) {
     SNESConvergedReason reason;
     bool rejected;
@@ -835,6 +847,11 @@ PetscErrorCode Newton(Simulation &sim) {
                "-solver newton: an equilibrium step at full load did not converge (SNES: %s)",
                SNESConvergedReasons[reason]);
     PetscCall(StaticResidual(sim, s.shape, &run.ratio));
+    if (!s.quiet)
+      PetscCall(PetscPrintf(sim.comm,
+                            "  equilibrium step %" PetscInt_FMT ": unbalanced-force ratio %.3e "
+                            "(-tol %g)\n",
+                            k + 1, run.ratio, s.tol));
   }
   run.converged = run.ratio <= s.tol;
   run.stage_seconds = MPI_Wtime() - t_start;
