@@ -351,7 +351,8 @@ PetscErrorCode Loads(NewtonSolver &ns) {
 }
 
 // The converged increment into the particles: x += sum S_i du_i, F, V = det(F) V0, stress and
-// plastic strain (the materials' own update with dudx = G), velocity 0; migration if needed.
+// plastic strain (the materials' own update with dudx = G_m, the midpoint gradient), velocity 0;
+// migration if needed.
 template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
   constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
   Simulation &sim = *ns.sim;

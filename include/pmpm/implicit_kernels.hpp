@@ -7,8 +7,9 @@
 // unknown is the nodal displacement increment du. Per particle
 //   G = sum_i du_i (x) grad S_i           (increment gradient w.r.t. x^n)
 //   f = I + G,  J = det f,  F = f F^n     (the explicit step's F <- (I + L dt) F)
-//   sigma' = the material's update with dudx = G and F (evaluated on copies, committed only
-//            after the step converged)
+//   G_m = (I + G/2)^-1 G                  (the gradient over the step's midpoint configuration)
+//   sigma' = the material's update with dudx = G_m and F (evaluated on copies, committed only
+//            after the step converged; G_m makes the rate-form update second order in the step)
 //   P = J sigma' f^-T                     (first Piola stress relative to the step's start)
 // and the internal force is f_int,i = sum_p V_p^n P_p grad S_i(x_p^n): exactly the Cauchy
 // force sum_p V_p sigma_p grad_x S_i on the moved grid. At du = 0 it is the explicit P2G's
@@ -74,13 +75,13 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
 
 // A = dP / dG (DIM^2 x DIM^2, A[(a DIM + j) DIM^2 + (b DIM + l)] = dP_aj / dG_bl) of one particle,
 // exact for the material's update: linear elastic (Jaumann rate, the explicit update with
-// dudx = G), neo-Hookean, or the rate-form plastic models (the same elastic predictor followed
-// by the return map, differentiated through it: the consistent tangent). s_old: committed
-// stress; s_new: the stress at G (after the return); Fn: committed F; eps_p: committed
-// equivalent plastic strain (plastic models only). eigen (3 values xx yy zz, or null): the step's
-// eigenstrain increment (degradation.hpp), which the rate-form update subtracts from sym(G): a
-// stress-free strain, so it moves the plastic models' trial stress (and so their return) but adds
-// no term of its own.
+// dudx = G_m, through dG_m = H^-1 dG H^-1, H = I + G/2), neo-Hookean, or the rate-form plastic
+// models (the same elastic predictor followed by the return map, differentiated through it: the
+// consistent tangent). s_old: committed stress; s_new: the stress at G (after the return); Fn:
+// committed F; eps_p: committed equivalent plastic strain (plastic models only). eigen (3 values xx
+// yy zz, or null): the step's eigenstrain increment (degradation.hpp), which the rate-form update
+// subtracts from sym(G): a stress-free strain, so it moves the plastic models' trial stress (and so
+// their return) but adds no term of its own.
 void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
                    const double *s_new, const double *Fn, double eps_p, double *A,
                    const double *eigen = nullptr);
