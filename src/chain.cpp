@@ -37,6 +37,16 @@ void point_halfsize(const GridView &G, const double *x, const double tau[DIM], d
   }
 }
 
+// Point i's frame (point_frame) and its uGIMP weights over its block (point_halfsize) on G.
+void point_stencil(const Chain &c, int i, const GridView &G, double tau[DIM], double nrm[DIM],
+                   Weights<UGIMPShape> &W) {
+  const double *x = &c.x[i * DIM];
+  double lp[DIM];
+  point_frame(c, i, tau, nrm);
+  point_halfsize(G, x, tau, lp);
+  weights<UGIMPShape>(x, lp, G.origin, G.h, W);
+}
+
 bool pinned(const Chain &c, int i) {
   return (i == 0 && c.pin[0]) || (i == c.n - 1 && c.pin[1]);
 }
@@ -236,15 +246,12 @@ void chain_lay(Chain &c) {
 void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &grid) {
   Weights<UGIMPShape> W;
   constexpr int NS = UGIMPShape::NS;
-  double lp[DIM];
   const int body = c.body * GridDof::NDOF, slot = c.slot;
   for (int i = 0; i < c.n; ++i) {
     const double *x = &c.x[i * DIM];
     if (pinned(c, i) || !owned_by(grid, G, x)) continue;
     double tau[DIM], nrm[DIM];
-    point_frame(c, i, tau, nrm);
-    point_halfsize(G, x, tau, lp);
-    weights<UGIMPShape>(x, lp, G.origin, G.h, W);
+    point_stencil(c, i, G, tau, nrm, W);
     const double m = c.line_mass * c.length[i], wt = load.factor * c.line_weight * c.length[i];
     double fext[DIM] = {wt * load.gdir[0], wt * load.gdir[1]};
     if (i == c.n - 1)
@@ -270,18 +277,14 @@ void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &
 
 bool chain_point_weights(const Chain &c, int i, const GridView &G, const Grid &grid,
                          Weights<UGIMPShape> &W) {
-  const double *x = &c.x[i * DIM];
-  double tau[DIM], nrm[DIM], lp[DIM];
-  point_frame(c, i, tau, nrm);
-  point_halfsize(G, x, tau, lp);
-  weights<UGIMPShape>(x, lp, G.origin, G.h, W);
-  return !pinned(c, i) && owned_by(grid, G, x);
+  double tau[DIM], nrm[DIM];
+  point_stencil(c, i, G, tau, nrm, W);
+  return !pinned(c, i) && owned_by(grid, G, &c.x[i * DIM]);
 }
 
 void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm) {
   Weights<UGIMPShape> W;
   constexpr int NS = UGIMPShape::NS, ND = GridDof::NDOF;
-  double lp[DIM];
   const double dt = prm.dt, pic = prm.pic;
   const int body = c.body * ND, above = (c.body + 1) * ND, below = (c.body - 1) * ND;
   const int slot = c.slot;
@@ -297,9 +300,7 @@ void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &p
       continue;
     }
     double tau[DIM], nrm[DIM];
-    point_frame(c, i, tau, nrm);
-    point_halfsize(G, x, tau, lp);
-    weights<UGIMPShape>(x, lp, G.origin, G.h, W);
+    point_stencil(c, i, G, tau, nrm, W);
     double vg[DIM] = {0, 0}, ag[DIM] = {0, 0}, va[DIM] = {0, 0}, vb[DIM] = {0, 0};
     double ma = 0, mb = 0, nt = 0, nbt = 0, len = 0;
     for (int b = 0; b < NS; ++b)
@@ -384,14 +385,11 @@ void chain_friction_capacity(const GridView &L, const GridView &G,
                              const std::vector<Chain> &chains) {
   Weights<UGIMPShape> W;
   constexpr int NS = UGIMPShape::NS;
-  double lp[DIM], tau[DIM], nrm[DIM];
+  double tau[DIM], nrm[DIM];
   for (const Chain &c : chains)
     for (int i = 0; i < c.n; ++i) {
       if (pinned(c, i)) continue;
-      const double *x = &c.x[i * DIM];
-      point_frame(c, i, tau, nrm);
-      point_halfsize(L, x, tau, lp);
-      weights<UGIMPShape>(x, lp, L.origin, L.h, W);
+      point_stencil(c, i, L, tau, nrm, W);
       // only points whose stencil lies in this rank's ghosted range can reach its nodes
       if (W.base[0] < L.gs[0] || W.base[1] < L.gs[1] || W.base[0] + NS > L.gs[0] + L.gm[0] ||
           W.base[1] + NS > L.gs[1] + L.gm[1])
