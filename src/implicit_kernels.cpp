@@ -76,6 +76,79 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
   }
 }
 
+template <class Shape>
+void implicit_displacement(const ParticleView &P, const NodalView &U, const NodalView &mask,
+                           double *u) {
+  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
+  Weights<Shape> W;
+  for (PetscInt p = 0; p < P.n; ++p) {
+    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, U.origin, U.h, W);
+    double up[DIM] = {0, 0};
+    for (int k = 0; k < NN; ++k) {
+      const PetscInt i = W.base[0] + k % NS, j = W.base[1] + k / NS;
+      const double *d = U.node(i, j), *m = mask.node(i, j);
+      for (int a = 0; a < DIM; ++a) up[a] += W.w[k] * m[a] * d[a];
+    }
+    for (int a = 0; a < DIM; ++a) u[p * DIM + a] = up[a];
+  }
+}
+
+template <class Shape>
+int reset_internal_force(const ParticleView &P, const double *G, const double *stress,
+                         const double *Pk, const double *u, const double gw[DIM],
+                         const NodalView &R) {
+  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
+  Weights<Shape> W0, W;
+  int outside = 0;
+  for (PetscInt p = 0; p < P.n; ++p) {
+    const double V = P.vol[p];
+    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, R.origin, R.h, W0);
+    const double xt[DIM] = {P.x[p * DIM] + u[p * DIM], P.x[p * DIM + 1] + u[p * DIM + 1]};
+    weights<Shape>(xt, P.lp + p * DIM, R.origin, R.h, W);
+    bool in = true;
+    for (int d = 0; d < DIM; ++d)
+      in = in && W.base[d] >= R.gs[d] && W.base[d] + NS <= R.gs[d] + R.gm[d];
+    if (!in) {
+      ++outside;
+      const double *Pm = Pk + p * DIM * DIM;
+      for (int k = 0; k < NN; ++k) {
+        double *r = R.node(W0.base[0] + k % NS, W0.base[1] + k / NS);
+        for (int a = 0; a < DIM; ++a)
+          for (int d = 0; d < DIM; ++d) r[a] += V * Pm[a * DIM + d] * W0.grad[k][d];
+      }
+      continue;
+    }
+    const double J = (MatN::Identity() + mat_of(G + p * DIM * DIM)).determinant();
+    const MatN s = V * J * in_plane(stress + p * NSTRESS);
+    const double wg[DIM] = {P.weight[p] * gw[0], P.weight[p] * gw[1]};
+    for (int k = 0; k < NN; ++k) {
+      double *r = R.node(W.base[0] + k % NS, W.base[1] + k / NS);
+      for (int a = 0; a < DIM; ++a)
+        r[a] += s(a, 0) * W.grad[k][0] + s(a, 1) * W.grad[k][1] - wg[a] * W.w[k];
+      double *r0 = R.node(W0.base[0] + k % NS, W0.base[1] + k / NS);
+      for (int a = 0; a < DIM; ++a) r0[a] += wg[a] * W0.w[k];
+    }
+  }
+  return outside;
+}
+
+template <class Shape>
+void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], const double *Vs,
+                              const double *wg, double *K) {
+  constexpr int NN = Weights<Shape>::NN, ND = NN * DIM;
+  for (int k = 0; k < NN; ++k) {
+    const double Hk[DIM][DIM] = {{H[k][0], H[k][1]}, {H[k][1], H[k][2]}};
+    for (int a = 0; a < DIM; ++a)
+      for (int m = 0; m < NN; ++m)
+        for (int c = 0; c < DIM; ++c) {
+          double v = -wg[a] * W.grad[k][c] * W.w[m];
+          for (int b = 0; b < DIM; ++b)
+            v += Vs[a * DIM + b] * (Hk[b][c] * W.w[m] + W.grad[k][c] * W.grad[m][b]);
+          K[(k * DIM + a) * ND + (m * DIM + c)] += v;
+        }
+  }
+}
+
 // Directional derivatives dP[dG] for the DIM^2 unit directions dG = e_b (x) e_l, with
 // f = I + G, J = det f, dJ = J tr(f^-1 dG), d(f^-T) = -f^-T dG^T f^-T:
 //   linear elastic:  P = J s' f^-T, ds' = dW s - s dW + lambda tr(dG) I + 2 mu sym(dG),
@@ -181,6 +254,13 @@ void add_particle_blocks(const Weights<Shape> &W, const double *K, const NodeBlo
                                      double *);                                                    \
   template void implicit_internal_force<S>(const ParticleView &, const double *,                   \
                                            const NodalView &);                                     \
+  template void implicit_displacement<S>(const ParticleView &, const NodalView &,                  \
+                                         const NodalView &, double *);                             \
+  template int reset_internal_force<S>(const ParticleView &, const double *, const double *,       \
+                                       const double *, const double *, const double *,             \
+                                       const NodalView &);                                         \
+  template void particle_reset_stiffness<S>(const Weights<S> &, const double[][3], const double *, \
+                                            const double *, double *);                             \
   template void particle_stiffness<S>(const Weights<S> &, double, const double *, double *);       \
   template void add_particle_blocks<S>(const Weights<S> &, const double *, const NodeBlocks &);
 PMPM_INSTANTIATE(LinearShape)

@@ -73,6 +73,38 @@ void implicit_piola(PetscInt n, const double *G, const double *stress, double *P
 template <class Shape>
 void implicit_internal_force(const ParticleView &P, const double *Pk, const NodalView &R);
 
+// Equilibrium steps at full load solve on the reset grid, where relaxation's criterion is checked
+// (newton.cpp): the particles' trial positions x' = x^n + u_p move across the fixed grid, and
+//   R_i = sum_p V^n J sigma'_p grad S_i(x'_p) - lambda w_p g (S_i(x'_p) - S_i(x^n_p)) - lambda
+//   f_ext,i
+// (w_p the particle's weight, g the gravity direction, f_ext at x^n; tractions and chains stay at
+// x^n). Its tangent is the moved grid's plus, linearized at x^n (particle_reset_stiffness),
+//   dR_ia / du_mc += sum_p V^n J sigma'_ab (d2S_i/dx_b dx_c S_m + dS_i/dx_c dS_m/dx_b)
+//                    - lambda w_p g_a dS_i/dx_c S_m:
+// the quadrature moving over the grid, of the order of |sigma| / E of the material stiffness.
+// Without it the equilibrium steps converge by a fixed factor (0.22 on the seed landfill, whose
+// soft zone carries a stress of that order of its modulus).
+
+// u_p = sum_i S_i(x_p) mask_i du_i per particle (DIM values each).
+template <class Shape>
+void implicit_displacement(const ParticleView &P, const NodalView &U, const NodalView &mask,
+                           double *u);
+
+// The reset grid's residual (above) into the ghosted view R, without the load at x^n; gw = lambda
+// g. A particle whose support at x' leaves the view (it moved across a rank's ghost layer) adds
+// its moved-grid force V^n P grad S_i(x^n) instead; returns how many did.
+template <class Shape>
+int reset_internal_force(const ParticleView &P, const double *G, const double *stress,
+                         const double *Pk, const double *u, const double gw[DIM],
+                         const NodalView &R);
+
+// Add the reset grid's term (above) to one particle's stiffness K (particle_stiffness' layout):
+// W and H the weights and their second derivatives at x^n, Vs = V^n J sigma' (DIM x DIM,
+// row-major), wg = lambda w_p g.
+template <class Shape>
+void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], const double *Vs,
+                              const double *wg, double *K);
+
 // A = dP / dG (DIM^2 x DIM^2, A[(a DIM + j) DIM^2 + (b DIM + l)] = dP_aj / dG_bl) of one particle,
 // exact for the material's update: linear elastic (Jaumann rate, the explicit update with
 // dudx = G_m, through dG_m = H^-1 dG H^-1, H = I + G/2), neo-Hookean, or the rate-form plastic

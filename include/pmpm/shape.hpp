@@ -13,6 +13,9 @@
 // DIM-D weights (weights() below). A new shape (quadratic B-spline, cpGIMP with a deforming
 // half-size) is one new struct in one new header, plus one line in the dispatch of cycle.cpp. A
 // shape that is not a tensor product (CPDI) provides its own weights() with the same output layout.
+// The shapes the implicit solver runs on (mpm, pmpm) also give the second derivatives of w with
+// respect to xi, d2w1d(xi, li, d2w) over the same support as eval1d (weight_hessians() below): the
+// reset grid's tangent (implicit_kernels.hpp) differentiates grad S_i in the particle's position.
 #pragma once
 #include "pmpm/config.hpp"
 #include <cmath>
@@ -36,6 +39,8 @@ struct LinearShape {
     dw[0] = -1.0;
     dw[1] = 1.0;
   }
+  // piecewise linear: no curvature inside a cell (the kinks at the nodes have measure zero)
+  static void d2w1d(double, double, double d2w[NS]) { d2w[0] = d2w[1] = 0.0; }
 };
 
 // Partition MPM (the paper's PMPM, eq. 14-15, 20; uGIMP): the particle is a block of constant
@@ -68,6 +73,14 @@ struct UGIMPShape {
     dw[1] = (N1b - a) * inv;
     dw[2] = N2b * inv;
   }
+  // d(dw)/dxi (a, b, c and e as in eval1d, da = db = 1): a block inside one cell averages a linear
+  // hat, so no curvature; a block across a face bends the three weights by (1, -2, 1) / 2li.
+  static void d2w1d(double xi, double li, double d2w[NS]) {
+    const double lo = xi - li, b = lo - std::floor(lo) + 2.0 * li, inv = 0.5 / li;
+    d2w[0] = b >= 1.0 ? inv : 0.0;
+    d2w[2] = b > 1.0 ? inv : 0.0;
+    d2w[1] = -d2w[0] - d2w[2];
+  }
 };
 
 // DIM-D tensor-product weights of one particle. Node a (0 <= a < NS^DIM) is at
@@ -95,6 +108,29 @@ inline void weights(const double *x, const double *l, const double origin[DIM], 
       W.w[k] = wx[a] * wy[b];
       W.grad[k][0] = dwx[a] * wy[b] * invh;
       W.grad[k][1] = wx[a] * dwy[b] * invh;
+    }
+}
+
+// The second derivatives of the DIM-D weights in the particle's position (per metre squared),
+// node k as in weights(): H[k] = {d2S/dx2, d2S/dxdy, d2S/dy2}.
+template <class Shape>
+inline void weight_hessians(const double *x, const double *l, const double origin[DIM], double h,
+                            double H[][3]) {
+  constexpr int NS = Shape::NS;
+  double wx[NS], dwx[NS], wy[NS], dwy[NS], d2x[NS], d2y[NS];
+  int base[DIM];
+  const double invh = 1.0 / h, xi = (x[0] - origin[0]) * invh, yi = (x[1] - origin[1]) * invh;
+  Shape::eval1d(xi, l[0] * invh, base[0], wx, dwx);
+  Shape::eval1d(yi, l[1] * invh, base[1], wy, dwy);
+  Shape::d2w1d(xi, l[0] * invh, d2x);
+  Shape::d2w1d(yi, l[1] * invh, d2y);
+  const double ih2 = invh * invh;
+  for (int b = 0; b < NS; ++b)
+    for (int a = 0; a < NS; ++a) {
+      const int k = b * NS + a;
+      H[k][0] = d2x[a] * wy[b] * ih2;
+      H[k][1] = dwx[a] * dwy[b] * ih2;
+      H[k][2] = wx[a] * d2y[b] * ih2;
     }
 }
 

@@ -7,7 +7,8 @@
 //   (numerical quadrature) and its gradient (finite differences), and continuity of the PMPM
 //   weights and gradients as a block crosses a cell face (where the linear gradient jumps);
 //   cpGIMP: the same properties for blocks up to one cell, cpGIMP == uGIMP for blocks up to half
-//   a cell (F = I), and its half-size from F.
+//   a cell (F = I), and its half-size from F; the second derivatives of the mpm and pmpm weights
+//   (weight_hessians, the implicit solver's reset-grid tangent) against differences of gradients.
 #include "check.hpp"
 #include "pmpm/shape.hpp"
 #include "pmpm/shape_cpgimp.hpp"
@@ -228,6 +229,64 @@ template <class Shape> void test_pmpm_gradient_is_derivative(Lcg &r, double lmax
   }
 }
 
+// weight_hessians (the implicit solver's reset-grid tangent): the second derivatives are the
+// central differences of the gradients, where no kink lies within the differences' reach (the
+// gradients are piecewise linear in the position, so there the differences are exact up to
+// round-off: xi ~ 12 rounds to 3e-15 cells, the gradients' slope is up to 1 / (2 l) = 10 per cell,
+// so ~ 3e-14 / (2 delta) = 2e-8 / h^2 (measured 1.4e-7 at worst), against values up to
+// 1 / (2 l h^2) = 10 / h^2 and a wrong term of order 1 / h^2; bound 1e-6 / h^2); and their sum and
+// first moment vanish everywhere (sum S_k = 1 and sum x_k S_k = x for every position).
+template <class Shape> bool near_kink(double xi, double li) {
+  const double tol = 1e-5; // cells: well beyond the differences' reach of 1e-6
+  auto near_int = [&](double v) { return std::fabs(v - std::round(v)) < tol; };
+  return Shape::NS == 2 ? near_int(xi) : near_int(xi - li) || near_int(xi + li);
+}
+
+template <class Shape> void test_hessian_is_derivative(Lcg &r) {
+  constexpr int NN = Weights<Shape>::NN;
+  const double delta = 1e-6; // cell units
+  Weights<Shape> W, Wp, Wm;
+  double Hs[NN][3];
+  int compared = 0;
+  for (int n = 0; n < NSAMPLE; ++n) {
+    double x[DIM], l[DIM];
+    random_particle(r, x, l);
+    weights<Shape>(x, l, ORIGIN, H, W);
+    weight_hessians<Shape>(x, l, ORIGIN, H, Hs);
+    double sum[3] = {0, 0, 0}, mom[DIM][3] = {{0, 0, 0}, {0, 0, 0}};
+    for (int k = 0; k < NN; ++k)
+      for (int q = 0; q < 3; ++q) {
+        sum[q] += Hs[k][q];
+        for (int d = 0; d < DIM; ++d) mom[d][q] += node_x(W, k, d) * Hs[k][q];
+      }
+    // terms up to 20 / h^2 (times |x_k| ~ 5 for the moment): round-off ~ 1e-14 / h^2
+    for (int q = 0; q < 3; ++q) {
+      CHECK_CLOSE(sum[q], 0.0, 1e-12 / (H * H));
+      for (int d = 0; d < DIM; ++d) CHECK_CLOSE(mom[d][q], 0.0, 1e-11 / (H * H));
+    }
+    bool kink = false;
+    for (int d = 0; d < DIM; ++d) kink = kink || near_kink<Shape>((x[d] - ORIGIN[d]) / H, l[d] / H);
+    if (kink) continue;
+    ++compared;
+    for (int e = 0; e < DIM; ++e) {
+      double xp[DIM] = {x[0], x[1]}, xm[DIM] = {x[0], x[1]};
+      xp[e] += delta * H;
+      xm[e] -= delta * H;
+      weights<Shape>(xp, l, ORIGIN, H, Wp);
+      weights<Shape>(xm, l, ORIGIN, H, Wm);
+      double maxerr = 0.0;
+      for (int k = 0; k < NN; ++k)
+        for (int d = 0; d < DIM; ++d) {
+          // d/dx_e of grad_d: H index xx = 0, xy = 1, yy = 2
+          const double fd = (Wp.grad[k][d] - Wm.grad[k][d]) / (2.0 * delta * H);
+          maxerr = std::max(maxerr, std::fabs(Hs[k][d + e] - fd));
+        }
+      CHECK_CLOSE(maxerr, 0.0, 1e-6 / (H * H));
+    }
+  }
+  CHECK(compared > NSAMPLE / 2);
+}
+
 // Largest change of any node's weight and gradient between particles at xa and xb.
 template <class Shape>
 void node_jumps(const double *xa, const double *xb, const double *l, double &dw, double &dg) {
@@ -388,6 +447,8 @@ int main() {
   test_pmpm_weight_is_block_average<UGIMPShape>(r);
   test_pmpm_gradient_is_derivative<UGIMPShape>(r);
   test_face_crossing(r);
+  test_hessian_is_derivative<LinearShape>(r);
+  test_hessian_is_derivative<UGIMPShape>(r);
   // cpGIMP, a sequence of its own (the tests above keep theirs)
   Lcg c(0x9E3779B97F4A7C15ull);
   test_basic_properties<CPGIMPShape>(c, CPGIMPShape::kMaxHalf);
