@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Implicit Newton (-solver newton) against dynamic relaxation: time to equilibrium and error.
 
-    /usr/bin/python3 bench/newton.py           # ~5 min on 2 cores; rewrites the "Implicit solver"
+    /usr/bin/python3 bench/newton.py           # ~10 min on 2 cores; rewrites the "Implicit solver"
                                                # section of BENCHMARKS.md and bench/newton.png
     /usr/bin/python3 bench/newton.py --quick   # seconds; writes bench/out/newton/NEWTON.md only
 
