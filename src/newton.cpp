@@ -62,7 +62,7 @@ struct NewtonSolver {
   bool reset = false;        // an equilibrium step: the residual of the reset grid
                              // (implicit_kernels.hpp), with the particles' increments up
   std::vector<double> up;
-  int outside = 0; // the last residual's particles that left the ghost layer (moved-grid force)
+  int outside = 0; // the last residual's particles whose trial support left the ghost nodes
   // membrane chains (chain_implicit.hpp): per chain its stencils and trial state at the step's
   // start, and the points' increments of all chains (summed over ranks)
   std::vector<ChainStencil> cst;
@@ -564,7 +564,16 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   PetscCall(PetscLogEventBegin(ev_solve, 0, 0, 0, 0));
   PetscCall(SNESSolve(ns.snes, nullptr, ns.U));
   PetscCall(PetscLogEventEnd(ev_solve, 0, 0, 0, 0));
+  if (ns.reset) { // particles whose trial support left their rank's ghost nodes: say so
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ns.outside, 1, MPI_INT, MPI_SUM, sim.comm));
+    if (ns.outside > 0 && !sim.set.quiet)
+      PetscCall(PetscPrintf(sim.comm,
+                            "  equilibrium step: %d particles moved past their rank's ghost nodes "
+                            "and kept the moved grid's force in this step\n",
+                            ns.outside));
+  }
   ns.reset = false;
+  ns.outside = 0;
   PetscCall(SNESGetConvergedReason(ns.snes, reason));
   PetscCall(SNESGetIterationNumber(ns.snes, &its));
   PetscCall(SNESGetLinearSolveIterations(ns.snes, &lits));
