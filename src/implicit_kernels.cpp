@@ -17,20 +17,24 @@ inline MatN in_plane(const double *s) { // Cauchy stress xx yy zz xy -> in-plane
 } // namespace
 
 template <class Shape>
-void implicit_gradient(const ParticleView &P, const NodalView &U, const NodalView &mask,
-                       double *G) {
+void implicit_gradient(const ParticleView &P, const NodalView &U, const NodalView &mask, double *G,
+                       double *up) {
   constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
   Weights<Shape> W;
   for (PetscInt p = 0; p < P.n; ++p) {
     weights<Shape>(P.x + p * DIM, P.lp + p * DIM, U.origin, U.h, W);
-    double g[DIM * DIM] = {0, 0, 0, 0};
+    double g[DIM * DIM] = {0, 0, 0, 0}, v[DIM] = {0, 0};
     for (int k = 0; k < NN; ++k) {
       const PetscInt i = W.base[0] + k % NS, j = W.base[1] + k / NS;
       const double *u = U.node(i, j), *m = mask.node(i, j);
-      for (int a = 0; a < DIM; ++a)
+      for (int a = 0; a < DIM; ++a) {
+        v[a] += W.w[k] * m[a] * u[a];
         for (int d = 0; d < DIM; ++d) g[a * DIM + d] += m[a] * u[a] * W.grad[k][d];
+      }
     }
     for (int q = 0; q < DIM * DIM; ++q) G[p * DIM * DIM + q] = g[q];
+    if (up)
+      for (int a = 0; a < DIM; ++a) up[p * DIM + a] = v[a];
   }
 }
 
@@ -73,23 +77,6 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
       for (int a = 0; a < DIM; ++a)
         for (int d = 0; d < DIM; ++d) r[a] += V * Pm[a * DIM + d] * W.grad[k][d];
     }
-  }
-}
-
-template <class Shape>
-void implicit_displacement(const ParticleView &P, const NodalView &U, const NodalView &mask,
-                           double *u) {
-  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
-  Weights<Shape> W;
-  for (PetscInt p = 0; p < P.n; ++p) {
-    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, U.origin, U.h, W);
-    double up[DIM] = {0, 0};
-    for (int k = 0; k < NN; ++k) {
-      const PetscInt i = W.base[0] + k % NS, j = W.base[1] + k / NS;
-      const double *d = U.node(i, j), *m = mask.node(i, j);
-      for (int a = 0; a < DIM; ++a) up[a] += W.w[k] * m[a] * d[a];
-    }
-    for (int a = 0; a < DIM; ++a) u[p * DIM + a] = up[a];
   }
 }
 
@@ -251,11 +238,9 @@ void add_particle_blocks(const Weights<Shape> &W, const double *K, const NodeBlo
 
 #define PMPM_INSTANTIATE(S)                                                                        \
   template void implicit_gradient<S>(const ParticleView &, const NodalView &, const NodalView &,   \
-                                     double *);                                                    \
+                                     double *, double *);                                          \
   template void implicit_internal_force<S>(const ParticleView &, const double *,                   \
                                            const NodalView &);                                     \
-  template void implicit_displacement<S>(const ParticleView &, const NodalView &,                  \
-                                         const NodalView &, double *);                             \
   template int reset_internal_force<S>(const ParticleView &, const double *, const double *,       \
                                        const double *, const double *, const double *,             \
                                        const NodalView &);                                         \

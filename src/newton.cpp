@@ -113,13 +113,10 @@ template <class Shape> PetscErrorCode TrialState(NewtonSolver &ns, Vec U, const 
   PetscCall(DMGlobalToLocal(ns.da, U, INSERT_VALUES, ns.Uloc));
   PetscCall(VecGetArrayRead(ns.Uloc, &u));
   PetscCall(VecGetArrayRead(ns.maskL, &mk));
+  if (ns.reset) ns.up.resize(n * DIM); // the equilibrium step's trial positions need u_p
   implicit_gradient<Shape>(P, LocalView(ns, const_cast<double *>(u)),
-                           LocalView(ns, const_cast<double *>(mk)), ns.G.data());
-  if (ns.reset) {
-    ns.up.resize(n * DIM);
-    implicit_displacement<Shape>(P, LocalView(ns, const_cast<double *>(u)),
-                                 LocalView(ns, const_cast<double *>(mk)), ns.up.data());
-  }
+                           LocalView(ns, const_cast<double *>(mk)), ns.G.data(),
+                           ns.reset ? ns.up.data() : nullptr);
   size_t off = 0; // the chains' points: the owners' increments, summed so every rank has all
   for (const ChainStencil &S : ns.cst) {
     chain_point_increment(S, LocalView(ns, const_cast<double *>(u)),

@@ -56,8 +56,10 @@ struct TangentModel {
 
 // G_p = sum_i (mask_i du_i) (x) grad S_i(x_p), row-major (G[a * DIM + j] = d du_a / d x_j);
 // mask is 1 on free dofs and 0 on held or unsupported ones (their du does not deform anything).
+// With up, also the particles' increments u_p = sum_i S_i(x_p) mask_i du_i (DIM values each).
 template <class Shape>
-void implicit_gradient(const ParticleView &P, const NodalView &U, const NodalView &mask, double *G);
+void implicit_gradient(const ParticleView &P, const NodalView &U, const NodalView &mask, double *G,
+                       double *up = nullptr);
 
 // Trial kinematics for the material batch: F_new = (I + G) F^n per particle.
 void implicit_deformation(PetscInt n, const double *G, const double *F, double *Fnew);
@@ -84,11 +86,6 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
 // the quadrature moving over the grid, of the order of |sigma| / E of the material stiffness.
 // Without it the equilibrium steps converge by a fixed factor (0.22 on the seed landfill, whose
 // soft zone carries a stress of that order of its modulus).
-
-// u_p = sum_i S_i(x_p) mask_i du_i per particle (DIM values each).
-template <class Shape>
-void implicit_displacement(const ParticleView &P, const NodalView &U, const NodalView &mask,
-                           double *u);
 
 // The reset grid's residual (above) into the ghosted view R, without the load at x^n; gw = lambda
 // g. A particle whose support at x' leaves the view (it moved across a rank's ghost layer) adds

@@ -7,9 +7,9 @@
 //   dilation, the fixed apex, tension cut-off and its corner with the cone): each return branch
 //   forced by the parameters and the random state, checked to 1e-6 of the tangent's largest
 //   entry, the branch the same at G and G +- eps (else the trial is skipped, and counted);
-//   implicit_gradient: a linear nodal displacement u_i = A x_i gives G = A at every particle
-//   (linear completeness of both shapes), and implicit_internal_force of a uniform P sums to zero
-//   over the nodes (the gradients of a partition of unity sum to zero).
+//   implicit_gradient: a linear nodal displacement u_i = A x_i gives G = A and u_p = A x_p at every
+//   particle (linear completeness of both shapes), and implicit_internal_force of a uniform P sums
+//   to zero over the nodes (the gradients of a partition of unity sum to zero).
 #include "check.hpp"
 #include "pmpm/implicit_kernels.hpp"
 #include "pmpm/materials/elastic.hpp"
@@ -248,9 +248,14 @@ template <class Shape> void test_completeness() {
   P.x = x.data();
   P.lp = lp.data();
   P.vol = vol.data();
-  implicit_gradient<Shape>(P, U, M, G.data());
-  for (int p = 0; p < n; ++p)
+  std::vector<double> up(2 * n);
+  implicit_gradient<Shape>(P, U, M, G.data(), up.data());
+  for (int p = 0; p < n; ++p) {
     for (int k = 0; k < 4; ++k) CHECK_CLOSE(G[4 * p + k], A[k], 1e-15);
+    // the weights reproduce the linear field at the particle: u_p = A x_p (values ~ 0.1, 1e-15)
+    CHECK_CLOSE(up[2 * p], A[0] * x[2 * p] + A[1] * x[2 * p + 1], 1e-15);
+    CHECK_CLOSE(up[2 * p + 1], A[2] * x[2 * p] + A[3] * x[2 * p + 1], 1e-15);
+  }
   implicit_internal_force<Shape>(P, Pk.data(), R);
   double sum[2] = {0, 0};
   for (int q = 0; q < 36; ++q)
