@@ -77,8 +77,8 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
 
 // Equilibrium steps at full load solve on the reset grid, where relaxation's criterion is checked
 // (newton.cpp): the particles' trial positions x' = x^n + u_p move across the fixed grid, and
-//   R_i = sum_p V^n J sigma'_p grad S_i(x'_p) - lambda w_p g (S_i(x'_p) - S_i(x^n_p)) - lambda
-//   f_ext,i
+//   R_i = sum_p [V^n J sigma'_p grad S_i(x'_p) - lambda w_p g (S_i(x'_p) - S_i(x^n_p))]
+//         - lambda f_ext,i
 // (w_p the particle's weight, g the gravity direction, f_ext at x^n; tractions and chains stay at
 // x^n). Its tangent is the moved grid's plus, linearized at x^n (particle_reset_stiffness),
 //   dR_ia / du_mc += sum_p V^n J sigma'_ab (d2S_i/dx_b dx_c S_m + dS_i/dx_c dS_m/dx_b)
