@@ -14,6 +14,10 @@ inline MatN in_plane(const double *s) { // Cauchy stress xx yy zz xy -> in-plane
   m << s[0], s[3], s[3], s[1];
   return m;
 }
+// V^n J sigma' of the reset grid's force (implicit_kernels.hpp), J = det(I + G)
+inline MatN current_stress_volume(double V, const double *G, const double *stress) {
+  return V * (MatN::Identity() + mat_of(G)).determinant() * in_plane(stress);
+}
 } // namespace
 
 template <class Shape>
@@ -105,8 +109,7 @@ int reset_internal_force(const ParticleView &P, const double *G, const double *s
       }
       continue;
     }
-    const double J = (MatN::Identity() + mat_of(G + p * DIM * DIM)).determinant();
-    const MatN s = V * J * in_plane(stress + p * NSTRESS);
+    const MatN s = current_stress_volume(V, G + p * DIM * DIM, stress + p * NSTRESS);
     const double wg[DIM] = {P.weight[p] * gw[0], P.weight[p] * gw[1]};
     for (int k = 0; k < NN; ++k) {
       double *r = R.node(W.base[0] + k % NS, W.base[1] + k / NS);
@@ -120,9 +123,12 @@ int reset_internal_force(const ParticleView &P, const double *G, const double *s
 }
 
 template <class Shape>
-void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], const double *Vs,
-                              const double *wg, double *K) {
+void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], double V,
+                              const double *G, const double *stress, double weight,
+                              const double gw[DIM], double *K) {
   constexpr int NN = Weights<Shape>::NN, ND = NN * DIM;
+  const MatN Vs = current_stress_volume(V, G, stress);
+  const double wg[DIM] = {weight * gw[0], weight * gw[1]};
   for (int k = 0; k < NN; ++k) {
     const double Hk[DIM][DIM] = {{H[k][0], H[k][1]}, {H[k][1], H[k][2]}};
     for (int a = 0; a < DIM; ++a)
@@ -130,7 +136,7 @@ void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], cons
         for (int c = 0; c < DIM; ++c) {
           double v = -wg[a] * W.grad[k][c] * W.w[m];
           for (int b = 0; b < DIM; ++b)
-            v += Vs[a * DIM + b] * (Hk[b][c] * W.w[m] + W.grad[k][c] * W.grad[m][b]);
+            v += Vs(a, b) * (Hk[b][c] * W.w[m] + W.grad[k][c] * W.grad[m][b]);
           K[(k * DIM + a) * ND + (m * DIM + c)] += v;
         }
   }
@@ -244,7 +250,8 @@ void add_particle_blocks(const Weights<Shape> &W, const double *K, const NodeBlo
   template int reset_internal_force<S>(const ParticleView &, const double *, const double *,       \
                                        const double *, const double *, const double *,             \
                                        const NodalView &);                                         \
-  template void particle_reset_stiffness<S>(const Weights<S> &, const double[][3], const double *, \
+  template void particle_reset_stiffness<S>(const Weights<S> &, const double[][3], double,         \
+                                            const double *, const double *, double,                \
                                             const double *, double *);                             \
   template void particle_stiffness<S>(const Weights<S> &, double, const double *, double *);       \
   template void add_particle_blocks<S>(const Weights<S> &, const double *, const NodeBlocks &);

@@ -210,6 +210,7 @@ template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
   ParticleView P;
   Weights<Shape> W;
   double A[DIM * DIM * DIM * DIM], K[ND * ND], H[NN][3];
+  const double gw[DIM] = {ns.lambda * sim.set.gdir[0], ns.lambda * sim.set.gdir[1]};
   const double *mk;
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(B));
@@ -232,13 +233,9 @@ template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
     weights<Shape>(P.x + p * DIM, P.lp + p * DIM, sim.grid.origin, sim.grid.h, W);
     particle_stiffness<Shape>(W, P.vol[p], A, K);
     if (ns.reset) {
-      const double *g = &ns.G[p * DIM * DIM], *sn = &ns.snew[p * NSTRESS];
-      const double VJ = P.vol[p] * ((1 + g[0]) * (1 + g[3]) - g[1] * g[2]);
-      const double Vs[DIM * DIM] = {VJ * sn[0], VJ * sn[3], VJ * sn[3], VJ * sn[1]};
-      const double wg[DIM] = {ns.lambda * P.weight[p] * sim.set.gdir[0],
-                              ns.lambda * P.weight[p] * sim.set.gdir[1]};
       weight_hessians<Shape>(P.x + p * DIM, P.lp + p * DIM, sim.grid.origin, sim.grid.h, H);
-      particle_reset_stiffness<Shape>(W, H, Vs, wg, K);
+      particle_reset_stiffness<Shape>(W, H, P.vol[p], &ns.G[p * DIM * DIM], &ns.snew[p * NSTRESS],
+                                      P.weight[p], gw, K);
     }
     add_particle_blocks<Shape>(W, K, NB);
   }

@@ -96,11 +96,12 @@ int reset_internal_force(const ParticleView &P, const double *G, const double *s
                          const NodalView &R);
 
 // Add the reset grid's term (above) to one particle's stiffness K (particle_stiffness' layout):
-// W and H the weights and their second derivatives at x^n, Vs = V^n J sigma' (DIM x DIM,
-// row-major), wg = lambda w_p g.
+// W and H the weights and their second derivatives at x^n, V = V^n, G and stress the particle's
+// increment gradient and trial Cauchy stress, weight = w_p, gw = lambda g.
 template <class Shape>
-void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], const double *Vs,
-                              const double *wg, double *K);
+void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], double V,
+                              const double *G, const double *stress, double weight,
+                              const double gw[DIM], double *K);
 
 // A = dP / dG (DIM^2 x DIM^2, A[(a DIM + j) DIM^2 + (b DIM + l)] = dP_aj / dG_bl) of one particle,
 // exact for the material's update: linear elastic (Jaumann rate, the explicit update with

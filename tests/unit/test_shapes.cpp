@@ -192,6 +192,17 @@ template <class Shape> void test_pmpm_weight_is_block_average(Lcg &r, double lma
   }
 }
 
+// The weights at x moved by +- delta cells along direction e (central differences).
+template <class Shape>
+void weights_shifted(const double *x, const double *l, int e, double delta, Weights<Shape> &Wp,
+                     Weights<Shape> &Wm) {
+  double xp[DIM] = {x[0], x[1]}, xm[DIM] = {x[0], x[1]};
+  xp[e] += delta * H;
+  xm[e] -= delta * H;
+  weights<Shape>(xp, l, ORIGIN, H, Wp);
+  weights<Shape>(xm, l, ORIGIN, H, Wm);
+}
+
 // PMPM gradient = derivative of the weight: centred finite differences in x and in y.
 //
 // Error bound: per direction the weight is (I(s + l) - I(s - l)) / 2l with I the hat's integral,
@@ -209,11 +220,7 @@ template <class Shape> void test_pmpm_gradient_is_derivative(Lcg &r, double lmax
     random_particle(r, x, l, lmax);
     weights<Shape>(x, l, ORIGIN, H, W);
     for (int e = 0; e < DIM; ++e) {
-      double xp[DIM] = {x[0], x[1]}, xm[DIM] = {x[0], x[1]};
-      xp[e] += delta * H;
-      xm[e] -= delta * H;
-      weights<Shape>(xp, l, ORIGIN, H, Wp);
-      weights<Shape>(xm, l, ORIGIN, H, Wm);
+      weights_shifted(x, l, e, delta, Wp, Wm);
       const double tol = (delta / (l[e] / H) + 1e-9) / H;
       double maxerr = 0.0;
       for (int j = W.base[1] - 1; j <= W.base[1] + Shape::NS; ++j)
@@ -269,11 +276,7 @@ template <class Shape> void test_hessian_is_derivative(Lcg &r) {
     if (kink) continue;
     ++compared;
     for (int e = 0; e < DIM; ++e) {
-      double xp[DIM] = {x[0], x[1]}, xm[DIM] = {x[0], x[1]};
-      xp[e] += delta * H;
-      xm[e] -= delta * H;
-      weights<Shape>(xp, l, ORIGIN, H, Wp);
-      weights<Shape>(xm, l, ORIGIN, H, Wm);
+      weights_shifted(x, l, e, delta, Wp, Wm);
       double maxerr = 0.0;
       for (int k = 0; k < NN; ++k)
         for (int d = 0; d < DIM; ++d) {
