@@ -53,7 +53,7 @@ def stage0(name, delta, max_steps):
                   "-cover_shrink_total", "0",
                   "-cover_shrink_stages", "0", "-mat_soil_cohesion", "0",
                   "-chain_hdpe_delta_top", repr(delta), "-chain_hdpe_delta_bottom", "40",
-                  "-max_steps", str(max_steps)], d)
+                  "-max_steps", str(max_steps)], d, capped=True)
     with open(f"{d}/stages.csv") as f:
         row = list(csv.DictReader(f))[0]
     return row, summary(d)["results"]["slope"]

@@ -53,7 +53,7 @@ runs += [(f"{m}x{n}", m * n, ["-da_processors_x", str(m), "-da_processors_y", st
          for m, n in grids]
 res = {}
 for label, np_, more in runs:
-    run(exe, np_, ["-options_file", opts] + extra + more, f"{out}/{label}")
+    run(exe, np_, ["-options_file", opts] + extra + more, f"{out}/{label}", capped=True)
     res[label] = particles(f"{out}/{label}", ("position", "stress"))
 ref = runs[0][0]
 ids1, f1 = res[ref]
