@@ -1,3 +1,4 @@
+#include "pmpm/options.hpp"
 #include "pmpm/balance.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/particle_records.hpp"
@@ -138,14 +139,14 @@ PetscErrorCode BalanceFromOptions(MPI_Comm comm, Balance &b) {
                              "passed)",
                              nullptr, BalanceModeNames, (PetscEnum)b.mode, (PetscEnum *)&b.mode,
                              nullptr));
-  PetscCall(PetscOptionsReal("-balance_gain",
-                             "Rebuild the grid only if it lowers the imbalance (max / mean "
-                             "particles per rank) by more than this fraction, 0 <= g < 1",
-                             nullptr, b.gain, &b.gain, nullptr));
-  PetscCall(PetscOptionsReal("-balance_threshold",
-                             "-balance run: rebalance at a stage's end when max / mean particles "
-                             "per rank exceeds this, >= 1",
-                             nullptr, b.threshold, &b.threshold, nullptr));
+  PetscCall(PmpmOptionsReal("-balance_gain",
+                            "Rebuild the grid only if it lowers the imbalance (max / mean "
+                            "particles per rank) by more than this fraction, 0 <= g < 1",
+                            nullptr, b.gain, &b.gain, nullptr));
+  PetscCall(PmpmOptionsReal("-balance_threshold",
+                            "-balance run: rebalance at a stage's end when max / mean particles "
+                            "per rank exceeds this, >= 1",
+                            nullptr, b.threshold, &b.threshold, nullptr));
   PetscOptionsEnd();
   PetscCheck(b.gain >= 0 && b.gain < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-balance_gain must be in [0, 1) (got %g)", b.gain);

@@ -15,12 +15,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <petscviewerhdf5.h>
+#include <sstream>
 
 namespace pmpm {
 
 namespace {
-constexpr const char *kFormat = "pmpm checkpoint 2";
+constexpr const char *kFormat = "pmpm checkpoint 3";
 std::string g_reading = "the checkpoint"; // the file CheckpointRead is reading (messages)
 PetscLogEvent ev_write = 0, ev_read = 0;
 
@@ -175,6 +177,82 @@ const ChainArrays kChainArrays[] = {
     {"p_bot", &Chain::p_bot},
 };
 
+// The options that define the model a checkpoint holds: every option the run was given (command
+// line and options files), by lower-case name, except run control, which a restart may change.
+bool RunControl(const std::string &name) {
+  static const char *const exact[] = {
+      "restart",           "output_dir",   "max_steps",        "quiet",
+      "progress_interval", "output_every", "checkpoint_every", "checkpoint_at_stage_end",
+      "options_file",      "help",         "memory_limit",     "options_left"};
+  static const char *const prefix[] = {"balance", "da_processors_", "log", "malloc", "info"};
+  for (const char *e : exact)
+    if (name == e) return true;
+  for (const char *q : prefix)
+    if (name.compare(0, std::strlen(q), q) == 0) return true;
+  return false;
+}
+
+using OptionMap = std::map<std::string, std::string>;
+
+PetscErrorCode ModelOptions(OptionMap &out) {
+  char *all = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(nullptr, &all));
+  std::istringstream in(all ? all : "");
+  PetscCall(PetscFree(all));
+  std::string tok, key;
+  out.clear();
+  while (in >> tok) {
+    PetscBool valid = PETSC_FALSE;
+    PetscCall(PetscOptionsValidKey(tok.c_str(), &valid));
+    if (valid) {
+      key = tok.substr(tok[1] == '-' ? 2 : 1);
+      for (char &ch : key) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      if (RunControl(key))
+        key.clear();
+      else
+        out[key] = "";
+    } else if (!key.empty()) {
+      out[key] += (out[key].empty() ? "" : " ") + tok;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+// one "name value" per line; names and values hold no blanks or newlines but between values
+std::string Serialise(const OptionMap &m) {
+  std::string s;
+  for (const auto &kv : m) s += kv.first + " " + kv.second + "\n";
+  return s;
+}
+
+OptionMap Deserialise(const std::string &s) {
+  OptionMap m;
+  std::istringstream in(s);
+  std::string line;
+  while (std::getline(in, line)) {
+    const size_t sp = line.find(' ');
+    if (sp != std::string::npos) m[line.substr(0, sp)] = line.substr(sp + 1);
+  }
+  return m;
+}
+
+// The same value: the same text, or the same numbers (2 and 2.0; 1e7 and 10e6).
+bool SameValue(const std::string &a, const std::string &b) {
+  if (a == b) return true;
+  std::istringstream x(a), y(b);
+  std::string ta, tb;
+  while (true) {
+    const bool ga = static_cast<bool>(std::getline(x, ta, ',')),
+               gb = static_cast<bool>(std::getline(y, tb, ','));
+    if (ga != gb) return false;
+    if (!ga) return true;
+    char *ea = nullptr, *eb = nullptr;
+    const double va = std::strtod(ta.c_str(), &ea), vb = std::strtod(tb.c_str(), &eb);
+    if (ta.empty() || tb.empty() || *ea || *eb || va != vb) return false;
+  }
+}
+
 std::string CheckpointName(const Simulation &sim) {
   char name[64];
   snprintf(name, sizeof(name), "checkpoint_%d.h5", (int)sim.run.step);
@@ -290,6 +368,9 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   const char *R = "/run";
   PetscCall(PutString(v, R, "format", kFormat));
   PetscCall(PutString(v, R, "scene", sim.set.scene));
+  OptionMap model;
+  PetscCall(ModelOptions(model));
+  PetscCall(PutString(v, R, "model_options", Serialise(model)));
   PetscCall(PutReal(v, R, "cell_size", sim.set.h));
   PetscCall(PutInt(v, R, "ncell_x", sim.ncell[0]));
   PetscCall(PutInt(v, R, "ncell_y", sim.ncell[1]));
@@ -462,6 +543,32 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
              "-restart %s: the checkpoint is of scene %s, this run is scene %s (restart with the "
              "options files of the run that wrote it)",
              F, scene.c_str(), sim.set.scene.c_str());
+  {
+    // the model it resumes: the same options but run control (RunControl)
+    std::string stored;
+    PetscCall(GetString(v, R, "model_options", file, stored));
+    const OptionMap was = Deserialise(stored);
+    OptionMap now;
+    PetscCall(ModelOptions(now));
+    const char *allowed =
+        "a restart resumes the model the checkpoint holds: give it the options of the run that "
+        "wrote it; only run control (-max_steps, -output_dir, -output_every, -checkpoint_*, "
+        "-progress_interval, -quiet, -memory_limit, -balance*, -da_processors_*) may change";
+    for (const auto &kv : now) {
+      const auto it = was.find(kv.first);
+      PetscCheck(it != was.end(), sim.comm, PETSC_ERR_USER_INPUT,
+                 "-restart %s: -%s %s is given here but not to the run that wrote the "
+                 "checkpoint; %s",
+                 F, kv.first.c_str(), kv.second.c_str(), allowed);
+      PetscCheck(SameValue(kv.second, it->second), sim.comm, PETSC_ERR_USER_INPUT,
+                 "-restart %s: -%s changed from %s (the run that wrote the checkpoint) to %s; %s",
+                 F, kv.first.c_str(), it->second.c_str(), kv.second.c_str(), allowed);
+    }
+    for (const auto &kv : was)
+      PetscCheck(now.count(kv.first), sim.comm, PETSC_ERR_USER_INPUT,
+                 "-restart %s: -%s %s was given to the run that wrote the checkpoint, not here; %s",
+                 F, kv.first.c_str(), kv.second.c_str(), allowed);
+  }
   PetscCheck(h == sim.set.h && nx == sim.ncell[0] && ny == sim.ncell[1], sim.comm,
              PETSC_ERR_USER_INPUT,
              "-restart %s: the checkpoint's grid is %d x %d cells of %g m, this run's %d x %d of "

@@ -7,6 +7,7 @@ static const char help[] =
 
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
+#include "pmpm/options.hpp"
 #include "pmpm/output.hpp"
 #include <cstdio>
 #include <cstring>
@@ -84,19 +85,17 @@ static PetscErrorCode Run() {
 
 // Errors come back as codes (no PETSc traceback) and are printed as one line naming the cause.
 int main(int argc, char **argv) {
-  // PETSc reads -options_file inside PetscInitialize, before any handler of ours: check it first.
-  for (int i = 1; i + 1 < argc; ++i)
-    if (std::string(argv[i]) == "-options_file") {
-      if (FILE *f = std::fopen(argv[i + 1], "r"))
-        std::fclose(f);
-      else {
-        std::fprintf(stderr,
-                     "pmpm: error: cannot open options file %s (given to -options_file; "
-                     "paths are relative to the current directory)\n",
-                     argv[i + 1]);
-        return 1;
-      }
-    }
+  // PETSc reads -options_file inside PetscInitialize, before any handler of ours: check the files
+  // (and the files they include) first; every rank finds the same, rank 0 prints it.
+  const std::string bad_files = CheckOptionsFiles(argc, argv);
+  if (!bad_files.empty()) {
+    int rank = 0;
+    MPI_Init(&argc, &argv);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank == 0) std::fprintf(stderr, "pmpm: error: %s\n", bad_files.c_str());
+    MPI_Finalize();
+    return 1;
+  }
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
   const PetscErrorCode ierr = Run();

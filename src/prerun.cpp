@@ -1,3 +1,4 @@
+#include "pmpm/options.hpp"
 #include "pmpm/prerun.hpp"
 #include <cerrno>
 #include <cmath>
@@ -122,10 +123,10 @@ PetscErrorCode CheckOutputDir(MPI_Comm comm, const std::string &dir) {
 PetscErrorCode MemoryFromOptions(MPI_Comm comm, MemoryCheck &m) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Memory check before the run", nullptr);
-  PetscCall(PetscOptionsReal("-memory_limit",
-                             "Memory per node the run may use (GiB), > 0; default: the node's "
-                             "available memory (MemAvailable, or the cgroup's limit if lower)",
-                             nullptr, m.limit_gib, &m.limit_gib, nullptr));
+  PetscCall(PmpmOptionsReal("-memory_limit",
+                            "Memory per node the run may use (GiB), > 0; default: the node's "
+                            "available memory (MemAvailable, or the cgroup's limit if lower)",
+                            nullptr, m.limit_gib, &m.limit_gib, nullptr));
   PetscOptionsEnd();
   PetscCheck(m.limit_gib >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-memory_limit must be > 0 GiB, or 0 for the node's available memory (got %g)",
