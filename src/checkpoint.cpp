@@ -192,7 +192,13 @@ bool RunControl(const std::string &name) {
   return false;
 }
 
-using OptionMap = std::map<std::string, std::string>;
+// lower-case name -> (the name as given, its value)
+using OptionMap = std::map<std::string, std::pair<std::string, std::string>>;
+
+std::string Lower(std::string s) {
+  for (char &ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
 
 PetscErrorCode ModelOptions(OptionMap &out) {
   char *all = nullptr;
@@ -206,14 +212,15 @@ PetscErrorCode ModelOptions(OptionMap &out) {
     PetscBool valid = PETSC_FALSE;
     PetscCall(PetscOptionsValidKey(tok.c_str(), &valid));
     if (valid) {
-      key = tok.substr(tok[1] == '-' ? 2 : 1);
-      for (char &ch : key) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      const std::string name = tok.substr(tok[1] == '-' ? 2 : 1);
+      key = Lower(name);
       if (RunControl(key))
         key.clear();
       else
-        out[key] = "";
+        out[key] = {name, ""};
     } else if (!key.empty()) {
-      out[key] += (out[key].empty() ? "" : " ") + tok;
+      std::string &val = out[key].second;
+      val += (val.empty() ? "" : " ") + tok;
     }
   }
   PetscFunctionReturn(0);
@@ -222,7 +229,7 @@ PetscErrorCode ModelOptions(OptionMap &out) {
 // one "name value" per line; names and values hold no blanks or newlines but between values
 std::string Serialise(const OptionMap &m) {
   std::string s;
-  for (const auto &kv : m) s += kv.first + " " + kv.second + "\n";
+  for (const auto &kv : m) s += kv.second.first + " " + kv.second.second + "\n";
   return s;
 }
 
@@ -232,7 +239,8 @@ OptionMap Deserialise(const std::string &s) {
   std::string line;
   while (std::getline(in, line)) {
     const size_t sp = line.find(' ');
-    if (sp != std::string::npos) m[line.substr(0, sp)] = line.substr(sp + 1);
+    if (sp != std::string::npos)
+      m[Lower(line.substr(0, sp))] = {line.substr(0, sp), line.substr(sp + 1)};
   }
   return m;
 }
@@ -550,35 +558,27 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
     const OptionMap was = Deserialise(stored);
     OptionMap now;
     PetscCall(ModelOptions(now));
-    const char *allowed =
-        "a restart resumes the model the checkpoint holds: give it the options of the run that "
-        "wrote it; only run control (-max_steps, -output_dir, -output_every, -checkpoint_*, "
-        "-progress_interval, -quiet, -memory_limit, -balance*, -da_processors_*) may change";
+    const char *allowed = "a restart resumes the checkpoint's model; only run control (-max_steps, "
+                          "-output_*, -checkpoint_*, -progress_interval, -quiet, -memory_limit, "
+                          "-balance*, -da_processors_*) may differ";
+    auto shown = [](const std::pair<std::string, std::string> &o) {
+      return "-" + o.first + (o.second.empty() ? "" : " " + o.second);
+    };
     for (const auto &kv : now) {
       const auto it = was.find(kv.first);
       PetscCheck(it != was.end(), sim.comm, PETSC_ERR_USER_INPUT,
-                 "-restart %s: -%s %s is given here but not to the run that wrote the "
-                 "checkpoint; %s",
-                 F, kv.first.c_str(), kv.second.c_str(), allowed);
-      PetscCheck(SameValue(kv.second, it->second), sim.comm, PETSC_ERR_USER_INPUT,
+                 "-restart %s: %s is given here, not to the run that wrote the checkpoint; %s", F,
+                 shown(kv.second).c_str(), allowed);
+      PetscCheck(SameValue(kv.second.second, it->second.second), sim.comm, PETSC_ERR_USER_INPUT,
                  "-restart %s: -%s changed from %s (the run that wrote the checkpoint) to %s; %s",
-                 F, kv.first.c_str(), it->second.c_str(), kv.second.c_str(), allowed);
+                 F, kv.second.first.c_str(), it->second.second.c_str(), kv.second.second.c_str(),
+                 allowed);
     }
     for (const auto &kv : was)
       PetscCheck(now.count(kv.first), sim.comm, PETSC_ERR_USER_INPUT,
-                 "-restart %s: -%s %s was given to the run that wrote the checkpoint, not here; %s",
-                 F, kv.first.c_str(), kv.second.c_str(), allowed);
+                 "-restart %s: %s was given to the run that wrote the checkpoint, not here; %s", F,
+                 shown(kv.second).c_str(), allowed);
   }
-  PetscCheck(h == sim.set.h && nx == sim.ncell[0] && ny == sim.ncell[1], sim.comm,
-             PETSC_ERR_USER_INPUT,
-             "-restart %s: the checkpoint's grid is %d x %d cells of %g m, this run's %d x %d of "
-             "%g m (restart with the options files of the run that wrote it)",
-             F, (int)nx, (int)ny, h, (int)sim.ncell[0], (int)sim.ncell[1], sim.set.h);
-  PetscCheck(np0 == sim.particles_setup && nch == (PetscInt)sim.chains.size(), sim.comm,
-             PETSC_ERR_USER_INPUT,
-             "-restart %s: the checkpoint's run generated %d particles and %d chains, this one %d "
-             "and %d (restart with the options files of the run that wrote it)",
-             F, (int)np0, (int)nch, (int)sim.particles_setup, (int)sim.chains.size());
   PetscInt stage, in_stage, conv, allc;
   PetscCall(GetInt(v, R, "stage", file, &stage));
   PetscCall(GetInt(v, R, "in_stage", file, &in_stage));
