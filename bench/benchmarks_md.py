@@ -39,7 +39,9 @@ def publish(text, path, begin, end, update):
 
 def launch(exe, np_, args, out, timeout=3600):
     """Run pmpm from the repository root into `out` (emptied first). Return (its summary.json with
-    the launch's wall seconds as "elapsed", the output) or (None, the output) if it failed."""
+    the launch's wall seconds as "elapsed" and the exit code as "exit_code", the output) or (None,
+    the output) if it failed. Exit 3 (a stage stopped at its step cap) and 4 (INCONCLUSIVE) wrote
+    their answers: they are results, not failures."""
     out = Path(out)
     if out.is_dir():
         shutil.rmtree(out)
@@ -48,11 +50,12 @@ def launch(exe, np_, args, out, timeout=3600):
     t0 = time.time()
     p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True, timeout=timeout)
-    if p.returncode != 0:
+    if p.returncode not in (0, 3, 4):
         return None, f"{' '.join(cmd)}\n{p.stdout}"
     with open(out / "summary.json") as f:
         s = json.load(f)
     s["elapsed"] = time.time() - t0
+    s["exit_code"] = p.returncode
     return s, p.stdout
 
 

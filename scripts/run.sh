@@ -16,7 +16,10 @@ run() { mpiexec -n "$NP" --oversubscribe build/pmpm "$@"; }
 if (($#)); then
   opts=$1
   shift
-  run -options_file "$opts" "$@"
+  # exit 3 (NOT CONVERGED) and 4 (INCONCLUSIVE) wrote their outputs: plot them, then exit with it
+  rc=0
+  run -options_file "$opts" "$@" || rc=$?
+  if ((rc != 0 && rc != 3 && rc != 4)); then exit "$rc"; fi
   # a scene with membrane chains: plot each chain's strain, tension, slip, pressure and shape
   out=$(/usr/bin/python3 -c 'import sys; a = sys.argv[1:]; print(a[a.index("-output_dir") + 1] if "-output_dir" in a else "")' "$@")
   [ -n "$out" ] || out=output/$(sed -n 's/^-scene *//p' "$opts" | head -1)
@@ -25,7 +28,7 @@ if (($#)); then
   if [ -f "$out/stages.csv" ]; then /usr/bin/python3 scripts/plot_cover.py "$out"; fi
   # the trapdoor: its ground reaction curve and deformed shape
   if [ -f "$out/trapdoor.csv" ]; then /usr/bin/python3 scripts/plot_trapdoor.py "$out"; fi
-  exit
+  exit "$rc"
 fi
 run -options_file options/landfill.opts -output_dir output/landfill
 run -options_file options/landfill_load1.opts -output_dir output/landfill_load1

@@ -424,6 +424,8 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
                            cs.tension};
   c.insert(c.end(), cs.friction.begin(), cs.friction.end());
   PetscCall(CheckpointWriteArray(v, "contact_stats", c));
+  PetscCall(CheckpointWriteArray(
+      v, "capped_stages", std::vector<double>(r.capped_stages.begin(), r.capped_stages.end())));
   // the surface loads (every rank holds them alike; a scene may have changed them)
   std::vector<double> loads;
   for (const ParticleLoad &L : sim.loads)
@@ -629,6 +631,9 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
     r.budget_w_local = ranks == sim.size ? w[sim.rank] : (sim.rank == 0 ? sum : 0.0);
     PetscCall(CheckpointReadArray(v, "iface_stats", is));
     PetscCall(CheckpointReadArray(v, "contact_stats", cs));
+    std::vector<double> capped;
+    PetscCall(CheckpointReadArray(v, "capped_stages", capped));
+    r.capped_stages.assign(capped.begin(), capped.end());
     std::vector<double> loads;
     PetscCall(CheckpointReadArray(v, "loads", loads));
     PetscCheck(loads.size() == 3 * DIM * sim.loads.size(), sim.comm, PETSC_ERR_FILE_UNEXPECTED,

@@ -71,6 +71,7 @@ std::string XdmfText(const std::string &h5, PetscInt n, double time) {
 }
 
 std::vector<std::string> g_series; // XDMF grids of the time-series frames (rank 0)
+bool g_series_first = true;        // this run's first frame (a restarted run's may come later)
 } // namespace
 
 std::string json_num(double v) {
@@ -184,12 +185,16 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
 PetscErrorCode OutputSeriesFrame(Simulation &sim) {
   char name[64];
   PetscFunctionBeginUser;
-  static bool first = true; // this process's first frame (a restarted run's may come later)
-  if (first) PetscCall(OutputPrepareDirectory(sim));
-  first = false;
+  if (g_series_first) PetscCall(OutputPrepareDirectory(sim));
+  g_series_first = false;
   snprintf(name, sizeof(name), "series/particles_%08d.h5", (int)sim.run.step);
   PetscCall(OutputParticles(sim, name));
   PetscFunctionReturn(0);
+}
+
+void OutputSeriesReset() {
+  g_series.clear();
+  g_series_first = true;
 }
 
 std::vector<std::string> &OutputSeriesFrames() {
@@ -211,7 +216,8 @@ PetscErrorCode OutputSeriesFinish(Simulation &sim) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode OutputSummary(Simulation &sim, const std::string &results) {
+PetscErrorCode OutputSummary(Simulation &sim, const std::string &results,
+                             const std::string &design) {
   PetscInt n;
   PetscFunctionBeginUser;
   PetscCall(ParticlesGlobalCount(sim.parts, &n));
@@ -243,19 +249,19 @@ PetscErrorCode OutputSummary(Simulation &sim, const std::string &results) {
                 ", \"nonlinear_iterations\": " + std::to_string(sim.run.newton_its) +
                 ", \"linear_iterations\": " + std::to_string(sim.run.linear_its) + "},\n  ";
     iface = solver + iface;
-    std::fprintf(f,
-                 "{\n  \"scene\": \"%s\",\n  \"ranks\": %d,\n  \"particles\": %d,\n"
-                 "  \"cells\": [%d, %d],\n  %s,\n  \"ppc\": %d,\n  \"shape\": \"%s\",\n"
-                 "  \"cfl\": %s,\n  \"steps\": %d,\n  \"time\": %s,\n  %s,\n"
-                 "  \"converged\": %s,\n  %s,\n  \"tolerance\": %s,\n  \"migrations\": %d,\n"
-                 "  %s,\n  %s\"results\": {\n    %s\n  }\n}\n",
-                 s.scene.c_str(), sim.size, (int)n, (int)sim.ncell[0], (int)sim.ncell[1],
-                 json_kv("h", s.h).c_str(), (int)s.ppc, ShapeKindNames[(int)s.shape],
-                 json_num(s.cfl).c_str(), (int)sim.run.step, json_num(sim.run.time).c_str(),
-                 json_kv("wall_seconds", sim.run.wall_seconds).c_str(),
-                 sim.run.converged ? "true" : "false",
-                 json_kv("unbalanced_force_ratio", sim.run.ratio).c_str(), json_num(s.tol).c_str(),
-                 (int)sim.run.migrations, partition.c_str(), iface.c_str(), results.c_str());
+    std::fprintf(
+        f,
+        "{\n  \"scene\": \"%s\",\n  \"ranks\": %d,\n  \"particles\": %d,\n"
+        "  \"cells\": [%d, %d],\n  %s,\n  \"ppc\": %d,\n  \"shape\": \"%s\",\n"
+        "  \"cfl\": %s,\n  \"steps\": %d,\n  \"time\": %s,\n  %s,\n"
+        "  \"converged\": %s,\n  %s,\n  \"tolerance\": %s,\n  \"migrations\": %d,\n"
+        "  %s,\n  %s%s,\n  \"results\": {\n    %s\n  }\n}\n",
+        s.scene.c_str(), sim.size, (int)n, (int)sim.ncell[0], (int)sim.ncell[1],
+        json_kv("h", s.h).c_str(), (int)s.ppc, ShapeKindNames[(int)s.shape],
+        json_num(s.cfl).c_str(), (int)sim.run.step, json_num(sim.run.time).c_str(),
+        json_kv("wall_seconds", sim.run.wall_seconds).c_str(), sim.run.converged ? "true" : "false",
+        json_kv("unbalanced_force_ratio", sim.run.ratio).c_str(), json_num(s.tol).c_str(),
+        (int)sim.run.migrations, partition.c_str(), iface.c_str(), design.c_str(), results.c_str());
     std::fclose(f);
   }
   PetscCall(OutputCommit(sim, "summary.json"));

@@ -17,7 +17,10 @@ PetscErrorCode RunStages(Simulation &sim) {
   // a restarted run (checkpoint.hpp) continues at the checkpoint's stage: inside it, or at its
   // start after the previous stage's end
   const PetscInt k0 = sim.resume ? sim.stage : 0;
-  if (!sim.resume) sim.run.all_converged = true;
+  if (!sim.resume) {
+    sim.run.all_converged = true;
+    sim.run.capped_stages.clear();
+  }
   double later = 0; // wall time of the stages after stage 0
   for (PetscInt k = k0; k <= n; ++k) {
     sim.stage = k;
@@ -32,6 +35,9 @@ PetscErrorCode RunStages(Simulation &sim) {
       PetscCall(Relax(sim)); // clears sim.resume
     sim.run.all_converged = sim.run.all_converged && sim.run.converged;
     PetscCall(sim.scene->end_stage(sim, k));
+    // a stage that stopped short of -tol, unless the scene ended it (a collapse is its answer)
+    if (!sim.run.converged && !sim.set.dynamic && !sim.run.stop_stage && !sim.scene->finished())
+      sim.run.capped_stages.push_back(static_cast<int>(k));
     if (sim.scene->finished()) break;
     if (k < n) PetscCall(BalanceRun(sim)); // -balance run: the partition follows the particles
     // after the scene's record: a checkpoint at every stage's end, or at a -checkpoint_every step

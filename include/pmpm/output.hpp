@@ -15,8 +15,12 @@ PetscErrorCode OutputSeriesFinish(Simulation &sim);
 // The time-series frames listed so far for particles_series.xmf (rank 0): a checkpoint carries
 // them, so a restarted run's series lists the frames written before the restart too.
 std::vector<std::string> &OutputSeriesFrames();
-// Writes DIR/summary.json; results is the body of the "results" object ("k": v, ...).
-PetscErrorCode OutputSummary(Simulation &sim, const std::string &results);
+// A new run in the same process (the meshes of -estimate_error): no frames listed yet.
+void OutputSeriesReset();
+// Writes DIR/summary.json; results is the body of the "results" object ("k": v, ...), design the
+// top-level verdict entries (design.hpp: design_json).
+PetscErrorCode OutputSummary(Simulation &sim, const std::string &results,
+                             const std::string &design);
 // Membrane chains: DIR/chain_<name>.csv (profile), DIR/chains.h5 + chains.xmf (polylines).
 PetscErrorCode OutputChains(Simulation &sim);
 // The "chains" and "contact" blocks of summary.json (empty without chains).

@@ -5,6 +5,7 @@
 #include "pmpm/balance.hpp"
 #include "pmpm/chain.hpp"
 #include "pmpm/degradation.hpp"
+#include "pmpm/design.hpp"
 #include "pmpm/grid.hpp"
 #include "pmpm/interface.hpp"
 #include "pmpm/material.hpp"
@@ -93,6 +94,10 @@ public:
   // Called once before the first step (step 0: a scene may set initial velocities there) and
   // after every step (rank-collective); for scenes that record a time history.
   virtual PetscErrorCode monitor(Simulation &) { return 0; }
+  // The design answers (design.hpp) of the state results() reported, and the allowable the
+  // checked one is compared with; called after results. Default: no design answers.
+  virtual PetscErrorCode design(Simulation &, DesignRecord &) { return 0; }
+  virtual bool has_design() const { return false; } // known after setup
   // Extra files (profiles); called after results, rank-collective.
   virtual PetscErrorCode write_files(Simulation &) { return 0; }
   // Stages after stage 0 (the loads' equilibrium): how many, what each changes before it is
@@ -142,6 +147,9 @@ struct RunState {
   double ke_window = -1;
   double budget_e0 = 0, budget_w_local = 0, budget_floor = 0;
   bool all_converged = true; // every stage so far converged
+  // Stages that ended at their step cap out of equilibrium (not a collapse the scene asked for,
+  // nor a -dynamic run, which has no equilibrium to reach): no verdict from such a run.
+  std::vector<int> capped_stages;
   // -solver newton (newton.cpp): load steps solved, nonlinear and linear iterations over the run
   PetscInt load_steps = 0, newton_its = 0, linear_its = 0;
 };
