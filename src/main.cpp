@@ -135,13 +135,13 @@ static PetscErrorCode ReadEstimateOptions(MPI_Comm comm, EstimateOptions &e) {
                              "with its estimated discretisation error (Richardson / GCI); the "
                              "verdict uses it",
                              nullptr, e.on, &e.on, nullptr));
-  PetscCall(PetscOptionsInt("-estimate_error_levels",
-                            "Meshes for -estimate_error, each half the last (2..4; 3 or more "
-                            "observe the order of convergence)",
-                            nullptr, e.levels, &e.levels, nullptr));
-  PetscCall(PetscOptionsReal("-estimate_error_order",
-                             "Order of convergence assumed with two meshes (0.5..4)", nullptr,
-                             e.order, &e.order, nullptr));
+  PetscCall(PmpmOptionsInt("-estimate_error_levels",
+                           "Meshes for -estimate_error, each half the last (2..4; 3 or more "
+                           "observe the order of convergence)",
+                           nullptr, e.levels, &e.levels, nullptr));
+  PetscCall(PmpmOptionsReal("-estimate_error_order",
+                            "Order of convergence assumed with two meshes (0.5..4)", nullptr,
+                            e.order, &e.order, nullptr));
   PetscOptionsEnd();
   PetscCheck(e.levels >= 2 && e.levels <= 4, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-estimate_error_levels %d: must be 2, 3 or 4", (int)e.levels);
