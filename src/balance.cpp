@@ -132,13 +132,13 @@ PetscErrorCode RankImbalance(MPI_Comm comm, PetscInt n, double *imb) {
 PetscErrorCode BalanceFromOptions(MPI_Comm comm, Balance &b) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Load balance (particles per rank)", nullptr);
-  PetscCall(PetscOptionsEnum("-balance",
-                             "Partition: none (PETSc's even split of the nodes), setup (split "
-                             "the particles per cell column and row evenly, at setup) or run "
-                             "(setup, and again at a stage's end when -balance_threshold is "
-                             "passed)",
-                             nullptr, BalanceModeNames, (PetscEnum)b.mode, (PetscEnum *)&b.mode,
-                             nullptr));
+  PetscCall(PmpmOptionsEnum("-balance",
+                            "Partition: none (PETSc's even split of the nodes), setup (split "
+                            "the particles per cell column and row evenly, at setup) or run "
+                            "(setup, and again at a stage's end when -balance_threshold is "
+                            "passed)",
+                            nullptr, BalanceModeNames, (PetscEnum)b.mode, (PetscEnum *)&b.mode,
+                            nullptr));
   PetscCall(PmpmOptionsReal("-balance_gain",
                             "Rebuild the grid only if it lowers the imbalance (max / mean "
                             "particles per rank) by more than this fraction, 0 <= g < 1",

@@ -88,11 +88,11 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   double sigma_y = 0, H = 0;
   c.nu = 0.0;
   PetscOptionsBegin(comm, prefix.c_str(), ("Membrane material " + spec.material).c_str(), nullptr);
-  PetscCall(PetscOptionsEnum("-law",
-                             "Membrane law: linear, tension_only (slack in compression), "
-                             "elastoplastic (1D von Mises, linear hardening)",
-                             nullptr, MembraneLawNames, (PetscEnum)c.law.kind,
-                             (PetscEnum *)&c.law.kind, nullptr));
+  PetscCall(PmpmOptionsEnum("-law",
+                            "Membrane law: linear, tension_only (slack in compression), "
+                            "elastoplastic (1D von Mises, linear hardening)",
+                            nullptr, MembraneLawNames, (PetscEnum)c.law.kind,
+                            (PetscEnum *)&c.law.kind, nullptr));
   PetscCall(PmpmOptionsReal("-E", "Young's modulus (Pa), > 0", nullptr, c.E, &c.E, &hasE));
   PetscCall(PmpmOptionsReal("-nu", "Poisson's ratio, 0 <= nu < 0.5 (plane-strain stiffness)",
                             nullptr, c.nu, &c.nu, nullptr));
@@ -100,7 +100,7 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
                             nullptr, c.gamma, &c.gamma, nullptr));
   PetscCall(PmpmOptionsReal("-density", "Inertial density (kg/m^3), > 0 (default gamma / 9.81)",
                             nullptr, c.density, &c.density, nullptr));
-  PetscCall(PetscOptionsEnum(
+  PetscCall(PmpmOptionsEnum(
       "-axial_stiffness", "J = E t / (1 - nu^2) (plane_strain) or E t (uniaxial)", nullptr,
       StiffnessKindNames, (PetscEnum)c.stiffness, (PetscEnum *)&c.stiffness, nullptr));
   PetscCall(PmpmOptionsReal("-yield_stress", "Uniaxial yield stress (Pa), > 0 (elastoplastic)",
@@ -137,10 +137,10 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   double delta[2] = {-1, -1};
   PetscOptionsBegin(comm, cp.c_str(), ("Chain " + spec.name + ": interfaces").c_str(), nullptr);
   FaceType ft = c.top.type;
-  PetscCall(PetscOptionsEnum("-interface",
-                             "Both faces: contact (Bardenhagen, separates), paper (one normal "
-                             "velocity), bonded",
-                             nullptr, FaceTypeNames, (PetscEnum)ft, (PetscEnum *)&ft, nullptr));
+  PetscCall(PmpmOptionsEnum("-interface",
+                            "Both faces: contact (Bardenhagen, separates), paper (one normal "
+                            "velocity), bonded",
+                            nullptr, FaceTypeNames, (PetscEnum)ft, (PetscEnum *)&ft, nullptr));
   c.top.type = c.bottom.type = ft;
   PetscCall(PmpmOptionsReal("-mu_top", "Friction coefficient on the upper face, >= 0", nullptr,
                             c.top.mu, &c.top.mu, nullptr));

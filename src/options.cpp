@@ -81,8 +81,7 @@ PetscErrorCode OptionRealArray(PetscOptionItems *items, const char opt[], const 
                  "%s expects comma-separated real numbers, got \"%s\" (%s)", name.c_str(),
                  s.c_str(), text);
       PetscCheck(p == Parse::Ok, items->comm, PETSC_ERR_USER_INPUT,
-                 "%s must be finite real numbers, got \"%s\" (%s)", name.c_str(), s.c_str(),
-                 text);
+                 "%s must be finite real numbers, got \"%s\" (%s)", name.c_str(), s.c_str(), text);
     }
     PetscCheck(s.back() != ',', items->comm, PETSC_ERR_USER_INPUT,
                "%s expects comma-separated real numbers, got \"%s\" (%s)", name.c_str(), s.c_str(),
@@ -95,6 +94,32 @@ PetscErrorCode OptionRealArray(PetscOptionItems *items, const char opt[], const 
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode OptionEnum(PetscOptionItems *items, const char opt[], const char text[],
+                          const char man[], const char *const *list, PetscEnum current,
+                          PetscEnum *value, PetscBool *set) {
+  std::string name;
+  const char *v = nullptr;
+  PetscBool found = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(RawValue(items, opt, name, &v, &found));
+  if (found) {
+    // the list: the names, then the enum's type name, its prefix and a null
+    int n = 0;
+    while (list[n]) ++n;
+    n -= 2;
+    std::string names;
+    bool known = false;
+    for (int k = 0; k < n; ++k) {
+      names += (k ? ", " : "") + std::string(list[k]);
+      known = known || (v && strcasecmp(v, list[k]) == 0);
+    }
+    PetscCheck(known, items->comm, PETSC_ERR_USER_INPUT, "%s %s is unknown; allowed: %s (%s)",
+               name.c_str(), v && v[0] ? v : "(no value)", names.c_str(), text);
+  }
+  PetscCall(PetscOptionsEnum_Private(items, opt, text, man, list, current, value, set));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode OptionInt(PetscOptionItems *items, const char opt[], const char text[],
                          const char man[], PetscInt current, PetscInt *value, PetscBool *set) {
   std::string name;
@@ -104,8 +129,8 @@ PetscErrorCode OptionInt(PetscOptionItems *items, const char opt[], const char t
   PetscCall(RawValue(items, opt, name, &v, &found));
   if (found) {
     const std::string s = v ? v : "";
-    PetscCheck(!s.empty(), items->comm, PETSC_ERR_USER_INPUT,
-               "%s needs a value: one integer (%s)", name.c_str(), text);
+    PetscCheck(!s.empty(), items->comm, PETSC_ERR_USER_INPUT, "%s needs a value: one integer (%s)",
+               name.c_str(), text);
     char *end = nullptr;
     errno = 0;
     const long long x = std::strtoll(s.c_str(), &end, 10);

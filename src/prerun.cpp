@@ -68,7 +68,8 @@ PetscErrorCode CompareWithNodes(Simulation &sim, const MemoryCheck &m, double ne
   if (worst.ratio > 1) {
     // memory goes as 1 / h^2: the cell size that fits (with 10 % to spare)
     const double h = sim.set.h * std::sqrt(1.1 * worst.ratio);
-    SETERRQ(sim.comm, PETSC_ERR_MEM,
+    // bad input (exit code 1), refused before any allocation: not PETSC_ERR_MEM
+    SETERRQ(sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
             "-cell_size %g needs about %.3g GiB (%s) on a node running %d rank%s, which has "
             "%.3g GiB available%s: use -cell_size %.3g or more, or more nodes",
             sim.set.h, v[0] / kGiB, what, (int)v[2], v[2] > 1 ? "s" : "", v[1] / kGiB,

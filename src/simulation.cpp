@@ -35,12 +35,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscCall(PmpmOptionsReal("-cell_size", "Cell size h (m), > 0", nullptr, s.h, &s.h, nullptr));
   PetscCall(PmpmOptionsInt("-ppc", "Particles per cell per direction, 1..8", nullptr, s.ppc, &s.ppc,
                            nullptr));
-  PetscCall(PetscOptionsEnum("-shape",
-                             "Shape functions: mpm (linear), pmpm (uGIMP: blocks of fixed size) or "
-                             "cpgimp (blocks stretched "
-                             "with F's diagonal, up to one cell in half-size)",
-                             nullptr, ShapeKindNames, (PetscEnum)s.shape, (PetscEnum *)&s.shape,
-                             nullptr));
+  PetscCall(PmpmOptionsEnum("-shape",
+                            "Shape functions: mpm (linear), pmpm (uGIMP: blocks of fixed size) or "
+                            "cpgimp (blocks stretched "
+                            "with F's diagonal, up to one cell in half-size)",
+                            nullptr, ShapeKindNames, (PetscEnum)s.shape, (PetscEnum *)&s.shape,
+                            nullptr));
   PetscCall(PmpmOptionsReal("-cfl", "Time-step factor on h / max(c + |v|), 0 < F <= 1", nullptr,
                             s.cfl, &s.cfl, nullptr));
   PetscCall(
@@ -61,24 +61,24 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                            nullptr, s.output_every, &s.output_every, nullptr));
   PetscCall(PmpmOptionsReal("-tol", "Convergence: unbalanced-force ratio max|f|/mean|f_ext|, > 0",
                             nullptr, s.tol, &s.tol, nullptr));
-  PetscCall(PetscOptionsEnum("-damping", "Dynamic-relaxation damping", nullptr, DampingNames,
-                             (PetscEnum)s.damping, (PetscEnum *)&s.damping, nullptr));
+  PetscCall(PmpmOptionsEnum("-damping", "Dynamic-relaxation damping", nullptr, DampingNames,
+                            (PetscEnum)s.damping, (PetscEnum *)&s.damping, nullptr));
   PetscCall(PmpmOptionsReal("-damping_alpha", "Local (Cundall) damping coefficient, 0 <= a < 1",
                             nullptr, s.damping_alpha, &s.damping_alpha, nullptr));
   PetscCall(PmpmOptionsInt("-ramp_steps", "Load ramp length in steps (0: full load at once)",
                            nullptr, s.ramp_steps, &s.ramp_steps, nullptr));
   PetscCall(PmpmOptionsReal("-pic", "PIC fraction of the particle velocity update, 0..1", nullptr,
                             s.pic, &s.pic, nullptr));
-  PetscCall(PetscOptionsEnum(
+  PetscCall(PmpmOptionsEnum(
       "-transfer",
       "Particle-grid velocity transfer: flip (FLIP blended with -pic PIC) or "
       "apic (affine PIC: keeps angular momentum; -pic unused; not with -musl)",
       nullptr, TransferNames, (PetscEnum)s.transfer, (PetscEnum *)&s.transfer, nullptr));
-  PetscCall(PetscOptionsEnum("-inertia_scaling",
-                             "Inertial density per material: none (given densities) or "
-                             "wave_speed (equal wave speed in every material; loads unchanged)",
-                             nullptr, InertiaScalingNames, (PetscEnum)s.inertia,
-                             (PetscEnum *)&s.inertia, nullptr));
+  PetscCall(PmpmOptionsEnum("-inertia_scaling",
+                            "Inertial density per material: none (given densities) or "
+                            "wave_speed (equal wave speed in every material; loads unchanged)",
+                            nullptr, InertiaScalingNames, (PetscEnum)s.inertia,
+                            (PetscEnum *)&s.inertia, nullptr));
   PetscCall(PmpmOptionsRealArray("-gravity_dir", "Gravity direction (normalised), gx,gy", nullptr,
                                  s.gdir, &ng, &set));
   PetscCheck(!set || ng == DIM, comm, PETSC_ERR_USER_INPUT,
@@ -98,12 +98,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                              "of one body in one cell (F-bar)",
                              nullptr, fbar, &fbar, nullptr));
   s.fbar = fbar;
-  PetscCall(PetscOptionsEnum("-fbar_pressure",
-                             "F-bar's internal force: particle (each particle's own pressure) or "
-                             "cell (the volume-averaged pressure of its cell and body, conjugate "
-                             "to the averaged volume change: B-bar; needed for dilatant flow)",
-                             nullptr, FbarPressureNames, (PetscEnum)s.fbar_pressure,
-                             (PetscEnum *)&s.fbar_pressure, nullptr));
+  PetscCall(PmpmOptionsEnum("-fbar_pressure",
+                            "F-bar's internal force: particle (each particle's own pressure) or "
+                            "cell (the volume-averaged pressure of its cell and body, conjugate "
+                            "to the averaged volume change: B-bar; needed for dilatant flow)",
+                            nullptr, FbarPressureNames, (PetscEnum)s.fbar_pressure,
+                            (PetscEnum *)&s.fbar_pressure, nullptr));
   PetscCheck(s.fbar || s.fbar_pressure == FbarPressure::Particle, comm, PETSC_ERR_USER_INPUT,
              "-fbar_pressure cell acts on F-bar's groups: add -fbar, or set -fbar_pressure "
              "particle to run without F-bar");
@@ -123,12 +123,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                                "that wrote it; any rank count)",
                                nullptr, restart, restart, sizeof(restart), &set));
   s.restart = set ? std::string(restart) : "";
-  PetscCall(PetscOptionsEnum("-solver",
-                             "Equilibrium solver: relaxation (explicit dynamic relaxation) or "
-                             "newton (implicit load steps on PETSc SNES; -newton_*, -snes_*, "
-                             "-ksp_*, -pc_* options)",
-                             nullptr, SolverNames, (PetscEnum)s.solver, (PetscEnum *)&s.solver,
-                             nullptr));
+  PetscCall(PmpmOptionsEnum("-solver",
+                            "Equilibrium solver: relaxation (explicit dynamic relaxation) or "
+                            "newton (implicit load steps on PETSc SNES; -newton_*, -snes_*, "
+                            "-ksp_*, -pc_* options)",
+                            nullptr, SolverNames, (PetscEnum)s.solver, (PetscEnum *)&s.solver,
+                            nullptr));
   PetscOptionsEnd();
 
   PetscCheck(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
@@ -187,8 +187,8 @@ PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, Mater
   dp.tension_cutoff = std::numeric_limits<double>::infinity();
   VonMisesParams vm;
   PetscOptionsBegin(comm, prefix.c_str(), ("Material " + name).c_str(), nullptr);
-  PetscCall(PetscOptionsEnum("-model", "Constitutive model", nullptr, MaterialModelNames,
-                             (PetscEnum)model, (PetscEnum *)&model, nullptr));
+  PetscCall(PmpmOptionsEnum("-model", "Constitutive model", nullptr, MaterialModelNames,
+                            (PetscEnum)model, (PetscEnum *)&model, nullptr));
   PetscCall(PmpmOptionsReal("-E", "Young's modulus (Pa), > 0", nullptr, m.el.E, &m.el.E, &hasE));
   PetscCall(
       PmpmOptionsReal("-nu", "Poisson's ratio, -1 < nu < 0.5", nullptr, m.el.nu, &m.el.nu, &hasnu));
@@ -211,9 +211,9 @@ PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, Mater
                               "Largest mean stress p (Pa, tension > 0); "
                               "default none",
                               nullptr, dp.tension_cutoff, &dp.tension_cutoff, nullptr));
-    PetscCall(PetscOptionsEnum("-match", "Mohr-Coulomb matching: outer, inner, plane_strain",
-                               nullptr, DPMatchNames, (PetscEnum)dp.match, (PetscEnum *)&dp.match,
-                               nullptr));
+    PetscCall(PmpmOptionsEnum("-match", "Mohr-Coulomb matching: outer, inner, plane_strain",
+                              nullptr, DPMatchNames, (PetscEnum)dp.match, (PetscEnum *)&dp.match,
+                              nullptr));
   }
   if (model == MaterialModel::VonMises) {
     PetscCall(PmpmOptionsReal("-yield_stress", "von Mises initial yield stress (Pa), > 0", nullptr,
@@ -306,9 +306,9 @@ PetscErrorCode BoundaryFromOptions(Simulation &sim) {
     char opt[32], topt[32], help[160];
     snprintf(opt, sizeof(opt), "-%s", kFaceNames[f]);
     snprintf(topt, sizeof(topt), "-%s_traction", kFaceNames[f]);
-    PetscCall(PetscOptionsEnum(opt, "Face condition: free, roller (normal velocity 0), fixed",
-                               nullptr, FaceBCNames, (PetscEnum)sim.face[f],
-                               (PetscEnum *)&sim.face[f], nullptr));
+    PetscCall(PmpmOptionsEnum(opt, "Face condition: free, roller (normal velocity 0), fixed",
+                              nullptr, FaceBCNames, (PetscEnum)sim.face[f],
+                              (PetscEnum *)&sim.face[f], nullptr));
     snprintf(help, sizeof(help),
              "Traction tx,ty (Pa) on the body's outermost particles toward the %s face "
              "(dead load, ramped with the loads; the face must be free)",
@@ -483,21 +483,21 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscBool type_set = PETSC_FALSE;
   PetscOptionsBegin(sim.comm, "interface_", "Interface of the colour-1 body (geomembrane)",
                     nullptr);
-  PetscCall(PetscOptionsEnum("-type",
-                             "bonded (one velocity field), paper (Coulomb friction-slip of "
-                             "section 3.2), contact (Bardenhagen multi-velocity friction); "
-                             "for a chain, the default of -chain_<name>_interface (contact)",
-                             nullptr, InterfaceTypeNames, (PetscEnum)sim.iface.type,
-                             (PetscEnum *)&sim.iface.type, &type_set));
+  PetscCall(PmpmOptionsEnum("-type",
+                            "bonded (one velocity field), paper (Coulomb friction-slip of "
+                            "section 3.2), contact (Bardenhagen multi-velocity friction); "
+                            "for a chain, the default of -chain_<name>_interface (contact)",
+                            nullptr, InterfaceTypeNames, (PetscEnum)sim.iface.type,
+                            (PetscEnum *)&sim.iface.type, &type_set));
   // each type's own normals unless asked otherwise: the paper's cells, Bardenhagen's gradient
   sim.iface.normals = sim.iface.type == InterfaceType::Contact ? InterfaceNormals::Particles
                                                                : InterfaceNormals::Cells;
-  PetscCall(PetscOptionsEnum("-normals",
-                             "cells (the paper's central differences of cell-average colour; "
-                             "default of paper) or particles (sum of V c grad S over body 1; "
-                             "default of contact)",
-                             nullptr, InterfaceNormalsNames, (PetscEnum)sim.iface.normals,
-                             (PetscEnum *)&sim.iface.normals, nullptr));
+  PetscCall(PmpmOptionsEnum("-normals",
+                            "cells (the paper's central differences of cell-average colour; "
+                            "default of paper) or particles (sum of V c grad S over body 1; "
+                            "default of contact)",
+                            nullptr, InterfaceNormalsNames, (PetscEnum)sim.iface.normals,
+                            (PetscEnum *)&sim.iface.normals, nullptr));
   PetscCall(PmpmOptionsReal("-mu_top", "Friction coefficient on the body's upper face, >= 0",
                             nullptr, sim.iface.mu_top, &sim.iface.mu_top, nullptr));
   PetscCall(PmpmOptionsReal("-mu_bottom", "Friction coefficient on the body's lower face, >= 0",

@@ -18,6 +18,11 @@ PetscErrorCode OptionReal(PetscOptionItems *items, const char opt[], const char 
                           const char man[], PetscReal current, PetscReal *value, PetscBool *set);
 PetscErrorCode OptionRealArray(PetscOptionItems *items, const char opt[], const char text[],
                                const char man[], PetscReal value[], PetscInt *n, PetscBool *set);
+// An enum option's value must be one of its list's names (PETSc's own refusal is a generic
+// PETSC_ERR_USER); the names are listed.
+PetscErrorCode OptionEnum(PetscOptionItems *items, const char opt[], const char text[],
+                          const char man[], const char *const *list, PetscEnum current,
+                          PetscEnum *value, PetscBool *set);
 PetscErrorCode OptionInt(PetscOptionItems *items, const char opt[], const char text[],
                          const char man[], PetscInt current, PetscInt *value, PetscBool *set);
 
@@ -36,3 +41,5 @@ std::string CheckOptionsFiles(int argc, char **argv);
 #define PmpmOptionsRealArray(a, b, c, d, e, f)                                                     \
   pmpm::OptionRealArray(PetscOptionsObject, a, b, c, d, e, f)
 #define PmpmOptionsInt(a, b, c, d, e, f) pmpm::OptionInt(PetscOptionsObject, a, b, c, d, e, f)
+#define PmpmOptionsEnum(a, b, c, d, e, f, g)                                                       \
+  pmpm::OptionEnum(PetscOptionsObject, a, b, c, d, e, f, g)

@@ -226,11 +226,11 @@ class CoverScene final : public Scene {
                              "Steps over which each stage's shrinkage is applied (0: auto, "
                              "25 wave transits of the model's height)",
                              nullptr, shrink_steps_, &shrink_steps_, nullptr));
-    PetscCall(PetscOptionsEnum("-shrink_mode",
-                               "Shrinkage eigenstrain: vertical (e*_yy = -e_v) or isotropic "
-                               "(-e_v/3 on xx, yy, zz)",
-                               nullptr, ShrinkModeNames, (PetscEnum)sim.shrink.mode,
-                               (PetscEnum *)&sim.shrink.mode, nullptr));
+    PetscCall(PmpmOptionsEnum("-shrink_mode",
+                              "Shrinkage eigenstrain: vertical (e*_yy = -e_v) or isotropic "
+                              "(-e_v/3 on xx, yy, zz)",
+                              nullptr, ShrinkModeNames, (PetscEnum)sim.shrink.mode,
+                              (PetscEnum *)&sim.shrink.mode, nullptr));
     PetscCall(PmpmOptionsRealArray("-shrink_x", "Degrading zone x_lo,x_hi (m; default all)",
                                    nullptr, zx, &nz, &zx_set));
     PetscCall(PmpmOptionsReal("-shrink_taper",
