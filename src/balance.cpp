@@ -1,3 +1,4 @@
+#include "pmpm/options.hpp"
 #include "pmpm/balance.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/particle_records.hpp"
@@ -131,21 +132,21 @@ PetscErrorCode RankImbalance(MPI_Comm comm, PetscInt n, double *imb) {
 PetscErrorCode BalanceFromOptions(MPI_Comm comm, Balance &b) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Load balance (particles per rank)", nullptr);
-  PetscCall(PetscOptionsEnum("-balance",
-                             "Partition: none (PETSc's even split of the nodes), setup (split "
-                             "the particles per cell column and row evenly, at setup) or run "
-                             "(setup, and again at a stage's end when -balance_threshold is "
-                             "passed)",
-                             nullptr, BalanceModeNames, (PetscEnum)b.mode, (PetscEnum *)&b.mode,
-                             nullptr));
-  PetscCall(PetscOptionsReal("-balance_gain",
-                             "Rebuild the grid only if it lowers the imbalance (max / mean "
-                             "particles per rank) by more than this fraction, 0 <= g < 1",
-                             nullptr, b.gain, &b.gain, nullptr));
-  PetscCall(PetscOptionsReal("-balance_threshold",
-                             "-balance run: rebalance at a stage's end when max / mean particles "
-                             "per rank exceeds this, >= 1",
-                             nullptr, b.threshold, &b.threshold, nullptr));
+  PetscCall(PmpmOptionsEnum("-balance",
+                            "Partition: none (PETSc's even split of the nodes), setup (split "
+                            "the particles per cell column and row evenly, at setup) or run "
+                            "(setup, and again at a stage's end when -balance_threshold is "
+                            "passed)",
+                            nullptr, BalanceModeNames, (PetscEnum)b.mode, (PetscEnum *)&b.mode,
+                            nullptr));
+  PetscCall(PmpmOptionsReal("-balance_gain",
+                            "Rebuild the grid only if it lowers the imbalance (max / mean "
+                            "particles per rank) by more than this fraction, 0 <= g < 1",
+                            nullptr, b.gain, &b.gain, nullptr));
+  PetscCall(PmpmOptionsReal("-balance_threshold",
+                            "-balance run: rebalance at a stage's end when max / mean particles "
+                            "per rank exceeds this, >= 1",
+                            nullptr, b.threshold, &b.threshold, nullptr));
   PetscOptionsEnd();
   PetscCheck(b.gain >= 0 && b.gain < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-balance_gain must be in [0, 1) (got %g)", b.gain);

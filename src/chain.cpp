@@ -1,3 +1,4 @@
+#include "pmpm/options.hpp"
 #include "pmpm/chain.hpp"
 #include "pmpm/shape.hpp"
 #include <algorithm>
@@ -87,25 +88,25 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   double sigma_y = 0, H = 0;
   c.nu = 0.0;
   PetscOptionsBegin(comm, prefix.c_str(), ("Membrane material " + spec.material).c_str(), nullptr);
-  PetscCall(PetscOptionsEnum("-law",
-                             "Membrane law: linear, tension_only (slack in compression), "
-                             "elastoplastic (1D von Mises, linear hardening)",
-                             nullptr, MembraneLawNames, (PetscEnum)c.law.kind,
-                             (PetscEnum *)&c.law.kind, nullptr));
-  PetscCall(PetscOptionsReal("-E", "Young's modulus (Pa), > 0", nullptr, c.E, &c.E, &hasE));
-  PetscCall(PetscOptionsReal("-nu", "Poisson's ratio, 0 <= nu < 0.5 (plane-strain stiffness)",
-                             nullptr, c.nu, &c.nu, nullptr));
-  PetscCall(PetscOptionsReal("-gamma", "Unit weight (N/m^3), >= 0; the sheet weighs gamma t",
-                             nullptr, c.gamma, &c.gamma, nullptr));
-  PetscCall(PetscOptionsReal("-density", "Inertial density (kg/m^3), > 0 (default gamma / 9.81)",
-                             nullptr, c.density, &c.density, nullptr));
-  PetscCall(PetscOptionsEnum(
+  PetscCall(PmpmOptionsEnum("-law",
+                            "Membrane law: linear, tension_only (slack in compression), "
+                            "elastoplastic (1D von Mises, linear hardening)",
+                            nullptr, MembraneLawNames, (PetscEnum)c.law.kind,
+                            (PetscEnum *)&c.law.kind, nullptr));
+  PetscCall(PmpmOptionsReal("-E", "Young's modulus (Pa), > 0", nullptr, c.E, &c.E, &hasE));
+  PetscCall(PmpmOptionsReal("-nu", "Poisson's ratio, 0 <= nu < 0.5 (plane-strain stiffness)",
+                            nullptr, c.nu, &c.nu, nullptr));
+  PetscCall(PmpmOptionsReal("-gamma", "Unit weight (N/m^3), >= 0; the sheet weighs gamma t",
+                            nullptr, c.gamma, &c.gamma, nullptr));
+  PetscCall(PmpmOptionsReal("-density", "Inertial density (kg/m^3), > 0 (default gamma / 9.81)",
+                            nullptr, c.density, &c.density, nullptr));
+  PetscCall(PmpmOptionsEnum(
       "-axial_stiffness", "J = E t / (1 - nu^2) (plane_strain) or E t (uniaxial)", nullptr,
       StiffnessKindNames, (PetscEnum)c.stiffness, (PetscEnum *)&c.stiffness, nullptr));
-  PetscCall(PetscOptionsReal("-yield_stress", "Uniaxial yield stress (Pa), > 0 (elastoplastic)",
-                             nullptr, sigma_y, &sigma_y, nullptr));
-  PetscCall(PetscOptionsReal("-hardening", "Linear hardening modulus (Pa), >= 0 (elastoplastic)",
-                             nullptr, H, &H, nullptr));
+  PetscCall(PmpmOptionsReal("-yield_stress", "Uniaxial yield stress (Pa), > 0 (elastoplastic)",
+                            nullptr, sigma_y, &sigma_y, nullptr));
+  PetscCall(PmpmOptionsReal("-hardening", "Linear hardening modulus (Pa), >= 0 (elastoplastic)",
+                            nullptr, H, &H, nullptr));
   PetscOptionsEnd();
   PetscCheck(hasE, comm, PETSC_ERR_USER_INPUT, "-%sE is required (Young's modulus in Pa)",
              prefix.c_str());
@@ -136,26 +137,25 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   double delta[2] = {-1, -1};
   PetscOptionsBegin(comm, cp.c_str(), ("Chain " + spec.name + ": interfaces").c_str(), nullptr);
   FaceType ft = c.top.type;
-  PetscCall(PetscOptionsEnum("-interface",
-                             "Both faces: contact (Bardenhagen, separates), paper (one normal "
-                             "velocity), bonded",
-                             nullptr, FaceTypeNames, (PetscEnum)ft, (PetscEnum *)&ft, nullptr));
+  PetscCall(PmpmOptionsEnum("-interface",
+                            "Both faces: contact (Bardenhagen, separates), paper (one normal "
+                            "velocity), bonded",
+                            nullptr, FaceTypeNames, (PetscEnum)ft, (PetscEnum *)&ft, nullptr));
   c.top.type = c.bottom.type = ft;
-  PetscCall(PetscOptionsReal("-mu_top", "Friction coefficient on the upper face, >= 0", nullptr,
-                             c.top.mu, &c.top.mu, nullptr));
-  PetscCall(PetscOptionsReal("-mu_bottom", "Friction coefficient on the lower face, >= 0", nullptr,
-                             c.bottom.mu, &c.bottom.mu, nullptr));
-  PetscCall(PetscOptionsReal("-delta_top",
-                             "Interface friction angle of the upper face (degrees, 0..60; "
-                             "replaces mu_top by tan delta)",
-                             nullptr, delta[0], &delta[0], nullptr));
-  PetscCall(PetscOptionsReal("-delta_bottom",
-                             "Interface friction angle of the lower face (degrees)", nullptr,
-                             delta[1], &delta[1], nullptr));
-  PetscCall(PetscOptionsReal("-adhesion_top", "Adhesion of the upper face (Pa), >= 0", nullptr,
-                             c.top.adhesion, &c.top.adhesion, nullptr));
-  PetscCall(PetscOptionsReal("-adhesion_bottom", "Adhesion of the lower face (Pa), >= 0", nullptr,
-                             c.bottom.adhesion, &c.bottom.adhesion, nullptr));
+  PetscCall(PmpmOptionsReal("-mu_top", "Friction coefficient on the upper face, >= 0", nullptr,
+                            c.top.mu, &c.top.mu, nullptr));
+  PetscCall(PmpmOptionsReal("-mu_bottom", "Friction coefficient on the lower face, >= 0", nullptr,
+                            c.bottom.mu, &c.bottom.mu, nullptr));
+  PetscCall(PmpmOptionsReal("-delta_top",
+                            "Interface friction angle of the upper face (degrees, 0..60; "
+                            "replaces mu_top by tan delta)",
+                            nullptr, delta[0], &delta[0], nullptr));
+  PetscCall(PmpmOptionsReal("-delta_bottom", "Interface friction angle of the lower face (degrees)",
+                            nullptr, delta[1], &delta[1], nullptr));
+  PetscCall(PmpmOptionsReal("-adhesion_top", "Adhesion of the upper face (Pa), >= 0", nullptr,
+                            c.top.adhesion, &c.top.adhesion, nullptr));
+  PetscCall(PmpmOptionsReal("-adhesion_bottom", "Adhesion of the lower face (Pa), >= 0", nullptr,
+                            c.bottom.adhesion, &c.bottom.adhesion, nullptr));
   PetscOptionsEnd();
   ChainFace *faces[2] = {&c.top, &c.bottom};
   const char *fname[2] = {"top", "bottom"};

@@ -15,7 +15,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <petscviewerhdf5.h>
+#include <sstream>
 
 namespace pmpm {
 
@@ -175,6 +177,90 @@ const ChainArrays kChainArrays[] = {
     {"p_bot", &Chain::p_bot},
 };
 
+// The options that define the model a checkpoint holds: every option the run was given (command
+// line and options files), by lower-case name, except run control, which a restart may change.
+bool RunControl(const std::string &name) {
+  static const char *const exact[] = {
+      "restart",           "output_dir",   "max_steps",        "quiet",
+      "progress_interval", "output_every", "checkpoint_every", "checkpoint_at_stage_end",
+      "options_file",      "help",         "memory_limit",     "options_left"};
+  static const char *const prefix[] = {"balance", "da_processors_", "log", "malloc", "info"};
+  for (const char *e : exact)
+    if (name == e) return true;
+  for (const char *q : prefix)
+    if (name.compare(0, std::strlen(q), q) == 0) return true;
+  return false;
+}
+
+// lower-case name -> (the name as given, its value)
+using OptionMap = std::map<std::string, std::pair<std::string, std::string>>;
+
+std::string Lower(std::string s) {
+  for (char &ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+PetscErrorCode ModelOptions(OptionMap &out) {
+  char *all = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(nullptr, &all));
+  std::istringstream in(all ? all : "");
+  PetscCall(PetscFree(all));
+  std::string tok, key;
+  out.clear();
+  while (in >> tok) {
+    PetscBool valid = PETSC_FALSE;
+    PetscCall(PetscOptionsValidKey(tok.c_str(), &valid));
+    if (valid) {
+      const std::string name = tok.substr(tok[1] == '-' ? 2 : 1);
+      key = Lower(name);
+      if (RunControl(key))
+        key.clear();
+      else
+        out[key] = {name, ""};
+    } else if (!key.empty()) {
+      std::string &val = out[key].second;
+      val += (val.empty() ? "" : " ") + tok;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+// one "name value" per line; names and values hold no blanks or newlines but between values
+std::string Serialise(const OptionMap &m) {
+  std::string s;
+  for (const auto &kv : m) s += kv.second.first + " " + kv.second.second + "\n";
+  return s;
+}
+
+OptionMap Deserialise(const std::string &s) {
+  OptionMap m;
+  std::istringstream in(s);
+  std::string line;
+  while (std::getline(in, line)) {
+    const size_t sp = line.find(' ');
+    if (sp != std::string::npos)
+      m[Lower(line.substr(0, sp))] = {line.substr(0, sp), line.substr(sp + 1)};
+  }
+  return m;
+}
+
+// The same value: the same text, or the same numbers (2 and 2.0; 1e7 and 10e6).
+bool SameValue(const std::string &a, const std::string &b) {
+  if (a == b) return true;
+  std::istringstream x(a), y(b);
+  std::string ta, tb;
+  while (true) {
+    const bool ga = static_cast<bool>(std::getline(x, ta, ',')),
+               gb = static_cast<bool>(std::getline(y, tb, ','));
+    if (ga != gb) return false;
+    if (!ga) return true;
+    char *ea = nullptr, *eb = nullptr;
+    const double va = std::strtod(ta.c_str(), &ea), vb = std::strtod(tb.c_str(), &eb);
+    if (ta.empty() || tb.empty() || *ea || *eb || va != vb) return false;
+  }
+}
+
 std::string CheckpointName(const Simulation &sim) {
   char name[64];
   snprintf(name, sizeof(name), "checkpoint_%d.h5", (int)sim.run.step);
@@ -290,6 +376,9 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   const char *R = "/run";
   PetscCall(PutString(v, R, "format", kFormat));
   PetscCall(PutString(v, R, "scene", sim.set.scene));
+  OptionMap model;
+  PetscCall(ModelOptions(model));
+  PetscCall(PutString(v, R, "model_options", Serialise(model)));
   PetscCall(PutReal(v, R, "cell_size", sim.set.h));
   PetscCall(PutInt(v, R, "ncell_x", sim.ncell[0]));
   PetscCall(PutInt(v, R, "ncell_y", sim.ncell[1]));
@@ -464,16 +553,34 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
              "-restart %s: the checkpoint is of scene %s, this run is scene %s (restart with the "
              "options files of the run that wrote it)",
              F, scene.c_str(), sim.set.scene.c_str());
-  PetscCheck(h == sim.set.h && nx == sim.ncell[0] && ny == sim.ncell[1], sim.comm,
-             PETSC_ERR_USER_INPUT,
-             "-restart %s: the checkpoint's grid is %d x %d cells of %g m, this run's %d x %d of "
-             "%g m (restart with the options files of the run that wrote it)",
-             F, (int)nx, (int)ny, h, (int)sim.ncell[0], (int)sim.ncell[1], sim.set.h);
-  PetscCheck(np0 == sim.particles_setup && nch == (PetscInt)sim.chains.size(), sim.comm,
-             PETSC_ERR_USER_INPUT,
-             "-restart %s: the checkpoint's run generated %d particles and %d chains, this one %d "
-             "and %d (restart with the options files of the run that wrote it)",
-             F, (int)np0, (int)nch, (int)sim.particles_setup, (int)sim.chains.size());
+  {
+    // the model it resumes: the same options but run control (RunControl)
+    std::string stored;
+    PetscCall(GetString(v, R, "model_options", file, stored));
+    const OptionMap was = Deserialise(stored);
+    OptionMap now;
+    PetscCall(ModelOptions(now));
+    const char *allowed = "a restart resumes the checkpoint's model; only run control (-max_steps, "
+                          "-output_*, -checkpoint_*, -progress_interval, -quiet, -memory_limit, "
+                          "-balance*, -da_processors_*) may differ";
+    auto shown = [](const std::pair<std::string, std::string> &o) {
+      return "-" + o.first + (o.second.empty() ? "" : " " + o.second);
+    };
+    for (const auto &kv : now) {
+      const auto it = was.find(kv.first);
+      PetscCheck(it != was.end(), sim.comm, PETSC_ERR_USER_INPUT,
+                 "-restart %s: %s is given here, not to the run that wrote the checkpoint; %s", F,
+                 shown(kv.second).c_str(), allowed);
+      PetscCheck(SameValue(kv.second.second, it->second.second), sim.comm, PETSC_ERR_USER_INPUT,
+                 "-restart %s: -%s changed from %s (the run that wrote the checkpoint) to %s; %s",
+                 F, kv.second.first.c_str(), it->second.second.c_str(), kv.second.second.c_str(),
+                 allowed);
+    }
+    for (const auto &kv : was)
+      PetscCheck(now.count(kv.first), sim.comm, PETSC_ERR_USER_INPUT,
+                 "-restart %s: %s was given to the run that wrote the checkpoint, not here; %s", F,
+                 shown(kv.second).c_str(), allowed);
+  }
   PetscInt stage, in_stage, conv, allc;
   PetscCall(GetInt(v, R, "stage", file, &stage));
   PetscCall(GetInt(v, R, "in_stage", file, &in_stage));

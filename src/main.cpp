@@ -7,6 +7,7 @@ static const char help[] =
 
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
+#include "pmpm/options.hpp"
 #include "pmpm/output.hpp"
 #include <cstdio>
 #include <cstring>
@@ -134,13 +135,13 @@ static PetscErrorCode ReadEstimateOptions(MPI_Comm comm, EstimateOptions &e) {
                              "with its estimated discretisation error (Richardson / GCI); the "
                              "verdict uses it",
                              nullptr, e.on, &e.on, nullptr));
-  PetscCall(PetscOptionsInt("-estimate_error_levels",
-                            "Meshes for -estimate_error, each half the last (2..4; 3 or more "
-                            "observe the order of convergence)",
-                            nullptr, e.levels, &e.levels, nullptr));
-  PetscCall(PetscOptionsReal("-estimate_error_order",
-                             "Order of convergence assumed with two meshes (0.5..4)", nullptr,
-                             e.order, &e.order, nullptr));
+  PetscCall(PmpmOptionsInt("-estimate_error_levels",
+                           "Meshes for -estimate_error, each half the last (2..4; 3 or more "
+                           "observe the order of convergence)",
+                           nullptr, e.levels, &e.levels, nullptr));
+  PetscCall(PmpmOptionsReal("-estimate_error_order",
+                            "Order of convergence assumed with two meshes (0.5..4)", nullptr,
+                            e.order, &e.order, nullptr));
   PetscOptionsEnd();
   PetscCheck(e.levels >= 2 && e.levels <= 4, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-estimate_error_levels %d: must be 2, 3 or 4", (int)e.levels);
@@ -212,19 +213,17 @@ static int ExitCodeFor(PetscErrorCode e) {
 
 // Errors come back as codes (no PETSc traceback) and are printed as one line naming the cause.
 int main(int argc, char **argv) {
-  // PETSc reads -options_file inside PetscInitialize, before any handler of ours: check it first.
-  for (int i = 1; i + 1 < argc; ++i)
-    if (std::string(argv[i]) == "-options_file") {
-      if (FILE *f = std::fopen(argv[i + 1], "r"))
-        std::fclose(f);
-      else {
-        std::fprintf(stderr,
-                     "pmpm: error: cannot open options file %s (given to -options_file; "
-                     "paths are relative to the current directory)\n",
-                     argv[i + 1]);
-        return 1;
-      }
-    }
+  // PETSc reads -options_file inside PetscInitialize, before any handler of ours: check the files
+  // (and the files they include) first; every rank finds the same, rank 0 prints it.
+  const std::string bad_files = CheckOptionsFiles(argc, argv);
+  if (!bad_files.empty()) {
+    int rank = 0;
+    MPI_Init(&argc, &argv);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank == 0) std::fprintf(stderr, "pmpm: error: %s\n", bad_files.c_str());
+    MPI_Finalize();
+    return 1;
+  }
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
   int code = 0;

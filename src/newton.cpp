@@ -23,6 +23,7 @@
 //    ramps the loads, a shrinkage stage its eigenstrain at full load; Scene::stage_change).
 //  - Default linear solver: a direct LU by MUMPS (any rank count; PETSc's own LU is serial), the
 //    line search bt; every -snes_/-ksp_/-pc_ option overrides them.
+#include "pmpm/options.hpp"
 #include "pmpm/newton.hpp"
 #include "pmpm/chain_implicit.hpp"
 #include "pmpm/cycle.hpp"
@@ -705,25 +706,25 @@ PetscErrorCode NewtonSetup(Simulation &sim) {
   sim.newton = ns;
   ns->sim = &sim;
   PetscOptionsBegin(sim.comm, "newton_", "Implicit solver (-solver newton)", nullptr);
-  PetscCall(PetscOptionsInt("-load_steps",
-                            "Load steps from zero to the full load, 1..100000 (the fewest "
-                            "under -newton_cell_fraction; a step whose solve fails is halved up "
-                            "to -newton_max_cuts times)",
-                            nullptr, ns->load_steps, &ns->load_steps, nullptr));
-  PetscCall(PetscOptionsInt("-max_cuts", "Halvings of a failed load step, 0..30", nullptr,
-                            ns->max_cuts, &ns->max_cuts, nullptr));
-  PetscCall(PetscOptionsInt("-equilibrium_steps",
-                            "Most equilibrium steps at full load on the reset grid to reach -tol, "
-                            "0..1000",
-                            nullptr, ns->max_equilibrium, &ns->max_equilibrium, nullptr));
-  PetscCall(PetscOptionsReal("-cell_fraction",
-                             "Adaptive load steps: the largest displacement increment of a step "
-                             "in cells, 0 <= f <= 1 (0: off, the -newton_load_steps equal steps)",
-                             nullptr, ns->cell_fraction, &ns->cell_fraction, nullptr));
-  PetscCall(PetscOptionsReal("-small_cut",
-                             "Nodes with less than this share of the largest nodal mass are held "
-                             "(du = 0: the small-cut nodes), 0 <= s < 0.1",
-                             nullptr, ns->small_cut, &ns->small_cut, nullptr));
+  PetscCall(PmpmOptionsInt("-load_steps",
+                           "Load steps from zero to the full load, 1..100000 (the fewest "
+                           "under -newton_cell_fraction; a step whose solve fails is halved up "
+                           "to -newton_max_cuts times)",
+                           nullptr, ns->load_steps, &ns->load_steps, nullptr));
+  PetscCall(PmpmOptionsInt("-max_cuts", "Halvings of a failed load step, 0..30", nullptr,
+                           ns->max_cuts, &ns->max_cuts, nullptr));
+  PetscCall(PmpmOptionsInt("-equilibrium_steps",
+                           "Most equilibrium steps at full load on the reset grid to reach -tol, "
+                           "0..1000",
+                           nullptr, ns->max_equilibrium, &ns->max_equilibrium, nullptr));
+  PetscCall(PmpmOptionsReal("-cell_fraction",
+                            "Adaptive load steps: the largest displacement increment of a step "
+                            "in cells, 0 <= f <= 1 (0: off, the -newton_load_steps equal steps)",
+                            nullptr, ns->cell_fraction, &ns->cell_fraction, nullptr));
+  PetscCall(PmpmOptionsReal("-small_cut",
+                            "Nodes with less than this share of the largest nodal mass are held "
+                            "(du = 0: the small-cut nodes), 0 <= s < 0.1",
+                            nullptr, ns->small_cut, &ns->small_cut, nullptr));
   PetscOptionsEnd();
   PetscCheck(ns->small_cut >= 0 && ns->small_cut < 0.1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-newton_small_cut must be in [0, 0.1) (got %g)", ns->small_cut);

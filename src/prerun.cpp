@@ -1,3 +1,4 @@
+#include "pmpm/options.hpp"
 #include "pmpm/prerun.hpp"
 #include <cerrno>
 #include <cmath>
@@ -67,7 +68,8 @@ PetscErrorCode CompareWithNodes(Simulation &sim, const MemoryCheck &m, double ne
   if (worst.ratio > 1) {
     // memory goes as 1 / h^2: the cell size that fits (with 10 % to spare)
     const double h = sim.set.h * std::sqrt(1.1 * worst.ratio);
-    SETERRQ(sim.comm, PETSC_ERR_MEM,
+    // bad input (exit code 1), refused before any allocation: not PETSC_ERR_MEM
+    SETERRQ(sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
             "-cell_size %g needs about %.3g GiB (%s) on a node running %d rank%s, which has "
             "%.3g GiB available%s: use -cell_size %.3g or more, or more nodes",
             sim.set.h, v[0] / kGiB, what, (int)v[2], v[2] > 1 ? "s" : "", v[1] / kGiB,
@@ -122,10 +124,10 @@ PetscErrorCode CheckOutputDir(MPI_Comm comm, const std::string &dir) {
 PetscErrorCode MemoryFromOptions(MPI_Comm comm, MemoryCheck &m) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Memory check before the run", nullptr);
-  PetscCall(PetscOptionsReal("-memory_limit",
-                             "Memory per node the run may use (GiB), > 0; default: the node's "
-                             "available memory (MemAvailable, or the cgroup's limit if lower)",
-                             nullptr, m.limit_gib, &m.limit_gib, nullptr));
+  PetscCall(PmpmOptionsReal("-memory_limit",
+                            "Memory per node the run may use (GiB), > 0; default: the node's "
+                            "available memory (MemAvailable, or the cgroup's limit if lower)",
+                            nullptr, m.limit_gib, &m.limit_gib, nullptr));
   PetscOptionsEnd();
   PetscCheck(m.limit_gib >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-memory_limit must be > 0 GiB, or 0 for the node's available memory (got %g)",

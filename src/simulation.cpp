@@ -1,4 +1,5 @@
 // Setup of a run: the common options, the scene, the materials, the grid and the particles.
+#include "pmpm/options.hpp"
 #include "pmpm/simulation.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/materials/elastic.hpp"
@@ -31,57 +32,59 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
       "(bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover, footing, "
       "trapdoor)");
   s.scene = scene;
-  PetscCall(PetscOptionsReal("-cell_size", "Cell size h (m), > 0", nullptr, s.h, &s.h, nullptr));
-  PetscCall(PetscOptionsInt("-ppc", "Particles per cell per direction, 1..8", nullptr, s.ppc,
-                            &s.ppc, nullptr));
-  PetscCall(PetscOptionsEnum("-shape",
-                             "Shape functions: mpm (linear), pmpm (uGIMP: blocks of fixed size) or "
-                             "cpgimp (blocks stretched "
-                             "with F's diagonal, up to one cell in half-size)",
-                             nullptr, ShapeKindNames, (PetscEnum)s.shape, (PetscEnum *)&s.shape,
-                             nullptr));
-  PetscCall(PetscOptionsReal("-cfl", "Time-step factor on h / max(c + |v|), 0 < F <= 1", nullptr,
-                             s.cfl, &s.cfl, nullptr));
+  PetscCall(PmpmOptionsReal("-cell_size", "Cell size h (m), > 0", nullptr, s.h, &s.h, nullptr));
+  PetscCall(PmpmOptionsInt("-ppc", "Particles per cell per direction, 1..8", nullptr, s.ppc, &s.ppc,
+                           nullptr));
+  PetscCall(PmpmOptionsEnum("-shape",
+                            "Shape functions: mpm (linear), pmpm (uGIMP: blocks of fixed size) or "
+                            "cpgimp (blocks stretched "
+                            "with F's diagonal, up to one cell in half-size)",
+                            nullptr, ShapeKindNames, (PetscEnum)s.shape, (PetscEnum *)&s.shape,
+                            nullptr));
+  PetscCall(PmpmOptionsReal("-cfl", "Time-step factor on h / max(c + |v|), 0 < F <= 1", nullptr,
+                            s.cfl, &s.cfl, nullptr));
   PetscCall(
-      PetscOptionsInt("-max_steps", "Step cap, >= 1", nullptr, s.max_steps, &s.max_steps, nullptr));
+      PmpmOptionsInt("-max_steps", "Step cap, >= 1", nullptr, s.max_steps, &s.max_steps, nullptr));
   PetscCall(PetscOptionsString("-output_dir", "Output directory (default output/<scene>)", nullptr,
                                dir, dir, sizeof(dir), &set));
+  PetscCheck(!set || dir[0], comm, PETSC_ERR_USER_INPUT,
+             "-output_dir is empty: give a directory (default output/<scene>)");
   s.output_dir = set ? std::string(dir) : "output/" + s.scene;
   PetscBool quiet = s.quiet ? PETSC_TRUE : PETSC_FALSE,
             dynamic = s.dynamic ? PETSC_TRUE : PETSC_FALSE,
             musl = s.musl ? PETSC_TRUE : PETSC_FALSE, fbar = s.fbar ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscOptionsBool("-quiet", "No progress lines", nullptr, quiet, &quiet, nullptr));
   s.quiet = quiet;
-  PetscCall(PetscOptionsInt("-output_every",
-                            "Also write a particle time series every K steps (0: "
-                            "final state only)",
-                            nullptr, s.output_every, &s.output_every, nullptr));
-  PetscCall(PetscOptionsReal("-tol", "Convergence: unbalanced-force ratio max|f|/mean|f_ext|, > 0",
-                             nullptr, s.tol, &s.tol, nullptr));
-  PetscCall(PetscOptionsEnum("-damping", "Dynamic-relaxation damping", nullptr, DampingNames,
-                             (PetscEnum)s.damping, (PetscEnum *)&s.damping, nullptr));
-  PetscCall(PetscOptionsReal("-damping_alpha", "Local (Cundall) damping coefficient, 0 <= a < 1",
-                             nullptr, s.damping_alpha, &s.damping_alpha, nullptr));
-  PetscCall(PetscOptionsInt("-ramp_steps", "Load ramp length in steps (0: full load at once)",
-                            nullptr, s.ramp_steps, &s.ramp_steps, nullptr));
-  PetscCall(PetscOptionsReal("-pic", "PIC fraction of the particle velocity update, 0..1", nullptr,
-                             s.pic, &s.pic, nullptr));
-  PetscCall(PetscOptionsEnum(
+  PetscCall(PmpmOptionsInt("-output_every",
+                           "Also write a particle time series every K steps (0: "
+                           "final state only)",
+                           nullptr, s.output_every, &s.output_every, nullptr));
+  PetscCall(PmpmOptionsReal("-tol", "Convergence: unbalanced-force ratio max|f|/mean|f_ext|, > 0",
+                            nullptr, s.tol, &s.tol, nullptr));
+  PetscCall(PmpmOptionsEnum("-damping", "Dynamic-relaxation damping", nullptr, DampingNames,
+                            (PetscEnum)s.damping, (PetscEnum *)&s.damping, nullptr));
+  PetscCall(PmpmOptionsReal("-damping_alpha", "Local (Cundall) damping coefficient, 0 <= a < 1",
+                            nullptr, s.damping_alpha, &s.damping_alpha, nullptr));
+  PetscCall(PmpmOptionsInt("-ramp_steps", "Load ramp length in steps (0: full load at once)",
+                           nullptr, s.ramp_steps, &s.ramp_steps, nullptr));
+  PetscCall(PmpmOptionsReal("-pic", "PIC fraction of the particle velocity update, 0..1", nullptr,
+                            s.pic, &s.pic, nullptr));
+  PetscCall(PmpmOptionsEnum(
       "-transfer",
       "Particle-grid velocity transfer: flip (FLIP blended with -pic PIC) or "
       "apic (affine PIC: keeps angular momentum; -pic unused; not with -musl)",
       nullptr, TransferNames, (PetscEnum)s.transfer, (PetscEnum *)&s.transfer, nullptr));
-  PetscCall(PetscOptionsEnum("-inertia_scaling",
-                             "Inertial density per material: none (given densities) or "
-                             "wave_speed (equal wave speed in every material; loads unchanged)",
-                             nullptr, InertiaScalingNames, (PetscEnum)s.inertia,
-                             (PetscEnum *)&s.inertia, nullptr));
-  PetscCall(PetscOptionsRealArray("-gravity_dir", "Gravity direction (normalised), gx,gy", nullptr,
-                                  s.gdir, &ng, &set));
+  PetscCall(PmpmOptionsEnum("-inertia_scaling",
+                            "Inertial density per material: none (given densities) or "
+                            "wave_speed (equal wave speed in every material; loads unchanged)",
+                            nullptr, InertiaScalingNames, (PetscEnum)s.inertia,
+                            (PetscEnum *)&s.inertia, nullptr));
+  PetscCall(PmpmOptionsRealArray("-gravity_dir", "Gravity direction (normalised), gx,gy", nullptr,
+                                 s.gdir, &ng, &set));
   PetscCheck(!set || ng == DIM, comm, PETSC_ERR_USER_INPUT,
              "-gravity_dir needs %d components, got %" PetscInt_FMT, DIM, ng);
-  PetscCall(PetscOptionsReal("-progress_interval", "Seconds between progress lines", nullptr,
-                             s.progress_seconds, &s.progress_seconds, nullptr));
+  PetscCall(PmpmOptionsReal("-progress_interval", "Seconds between progress lines", nullptr,
+                            s.progress_seconds, &s.progress_seconds, nullptr));
   PetscCall(PetscOptionsBool("-dynamic", "Undamped dynamics: no damping, run to -max_steps",
                              nullptr, dynamic, &dynamic, nullptr));
   s.dynamic = dynamic;
@@ -95,21 +98,21 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                              "of one body in one cell (F-bar)",
                              nullptr, fbar, &fbar, nullptr));
   s.fbar = fbar;
-  PetscCall(PetscOptionsEnum("-fbar_pressure",
-                             "F-bar's internal force: particle (each particle's own pressure) or "
-                             "cell (the volume-averaged pressure of its cell and body, conjugate "
-                             "to the averaged volume change: B-bar; needed for dilatant flow)",
-                             nullptr, FbarPressureNames, (PetscEnum)s.fbar_pressure,
-                             (PetscEnum *)&s.fbar_pressure, nullptr));
+  PetscCall(PmpmOptionsEnum("-fbar_pressure",
+                            "F-bar's internal force: particle (each particle's own pressure) or "
+                            "cell (the volume-averaged pressure of its cell and body, conjugate "
+                            "to the averaged volume change: B-bar; needed for dilatant flow)",
+                            nullptr, FbarPressureNames, (PetscEnum)s.fbar_pressure,
+                            (PetscEnum *)&s.fbar_pressure, nullptr));
   PetscCheck(s.fbar || s.fbar_pressure == FbarPressure::Particle, comm, PETSC_ERR_USER_INPUT,
              "-fbar_pressure cell acts on F-bar's groups: add -fbar, or set -fbar_pressure "
              "particle to run without F-bar");
   PetscBool stage_end = s.checkpoint_stage_end ? PETSC_TRUE : PETSC_FALSE;
   char restart[PETSC_MAX_PATH_LEN] = "";
-  PetscCall(PetscOptionsInt("-checkpoint_every",
-                            "Write the complete state to <output_dir>/checkpoint_<step>.h5 every "
-                            "K steps, K >= 0 (0: never)",
-                            nullptr, s.checkpoint_every, &s.checkpoint_every, nullptr));
+  PetscCall(PmpmOptionsInt("-checkpoint_every",
+                           "Write the complete state to <output_dir>/checkpoint_<step>.h5 every "
+                           "K steps, K >= 0 (0: never)",
+                           nullptr, s.checkpoint_every, &s.checkpoint_every, nullptr));
   PetscCall(PetscOptionsBool("-checkpoint_at_stage_end",
                              "Write the complete state to <output_dir>/checkpoint_<step>.h5 after "
                              "every stage",
@@ -120,12 +123,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                                "that wrote it; any rank count)",
                                nullptr, restart, restart, sizeof(restart), &set));
   s.restart = set ? std::string(restart) : "";
-  PetscCall(PetscOptionsEnum("-solver",
-                             "Equilibrium solver: relaxation (explicit dynamic relaxation) or "
-                             "newton (implicit load steps on PETSc SNES; -newton_*, -snes_*, "
-                             "-ksp_*, -pc_* options)",
-                             nullptr, SolverNames, (PetscEnum)s.solver, (PetscEnum *)&s.solver,
-                             nullptr));
+  PetscCall(PmpmOptionsEnum("-solver",
+                            "Equilibrium solver: relaxation (explicit dynamic relaxation) or "
+                            "newton (implicit load steps on PETSc SNES; -newton_*, -snes_*, "
+                            "-ksp_*, -pc_* options)",
+                            nullptr, SolverNames, (PetscEnum)s.solver, (PetscEnum *)&s.solver,
+                            nullptr));
   PetscOptionsEnd();
 
   PetscCheck(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
@@ -150,6 +153,8 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
              s.checkpoint_every);
   PetscCheck(!set || !s.restart.empty(), comm, PETSC_ERR_USER_INPUT,
              "-restart needs a checkpoint file (<output_dir>/checkpoint_<step>.h5)");
+  PetscCheck(s.progress_seconds >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-progress_interval must be >= 0 seconds (got %g)", s.progress_seconds);
   const double gn = std::hypot(s.gdir[0], s.gdir[1]);
   PetscCheck(gn > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity_dir must be non-zero");
   for (int d = 0; d < DIM; ++d) s.gdir[d] /= gn;
@@ -163,6 +168,11 @@ const char *const MaterialModelNames[] = {"linear_elastic", "neo_hookean",   "dr
                                           "von_mises",      "MaterialModel", "MODEL_",
                                           nullptr};
 const char *const DPMatchNames[] = {"outer", "inner", "plane_strain", "DPMatch", "DP_", nullptr};
+constexpr double kMaxModulus = 1e13;    // Pa: moduli, strengths, hardening
+constexpr double kMaxUnitWeight = 1e12; // N/m^3 (gamma) and kg/m^3 (density)
+// A material faster than this (sqrt(M / density), m/s; steel's P wave is 6e3 m/s) is a typo
+// in -mat_<name>_E or its density: its time step would be absurdly small.
+constexpr double kMaxWaveSpeed = 1e6;
 
 } // namespace
 
@@ -177,53 +187,57 @@ PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, Mater
   dp.tension_cutoff = std::numeric_limits<double>::infinity();
   VonMisesParams vm;
   PetscOptionsBegin(comm, prefix.c_str(), ("Material " + name).c_str(), nullptr);
-  PetscCall(PetscOptionsEnum("-model", "Constitutive model", nullptr, MaterialModelNames,
-                             (PetscEnum)model, (PetscEnum *)&model, nullptr));
-  PetscCall(PetscOptionsReal("-E", "Young's modulus (Pa), > 0", nullptr, m.el.E, &m.el.E, &hasE));
-  PetscCall(PetscOptionsReal("-nu", "Poisson's ratio, -1 < nu < 0.5", nullptr, m.el.nu, &m.el.nu,
-                             &hasnu));
-  PetscCall(PetscOptionsReal("-gamma", "Unit weight (N/m^3), the body force, >= 0", nullptr,
-                             m.gamma, &m.gamma, nullptr));
-  PetscCall(PetscOptionsReal("-density",
-                             "Inertial density (kg/m^3), > 0; ignored under "
-                             "-inertia_scaling wave_speed",
-                             nullptr, m.density, &m.density, nullptr));
+  PetscCall(PmpmOptionsEnum("-model", "Constitutive model", nullptr, MaterialModelNames,
+                            (PetscEnum)model, (PetscEnum *)&model, nullptr));
+  PetscCall(PmpmOptionsReal("-E", "Young's modulus (Pa), > 0", nullptr, m.el.E, &m.el.E, &hasE));
+  PetscCall(
+      PmpmOptionsReal("-nu", "Poisson's ratio, -1 < nu < 0.5", nullptr, m.el.nu, &m.el.nu, &hasnu));
+  PetscCall(PmpmOptionsReal("-gamma", "Unit weight (N/m^3), the body force, >= 0", nullptr, m.gamma,
+                            &m.gamma, nullptr));
+  PetscCall(PmpmOptionsReal("-density",
+                            "Inertial density (kg/m^3), > 0; ignored under "
+                            "-inertia_scaling wave_speed",
+                            nullptr, m.density, &m.density, nullptr));
   if (model == MaterialModel::DruckerPrager) {
-    PetscCall(PetscOptionsReal("-cohesion", "Drucker-Prager cohesion c (Pa), >= 0", nullptr,
-                               dp.cohesion, &dp.cohesion, nullptr));
-    PetscCall(PetscOptionsReal("-friction_angle", "Friction angle phi (degrees), 0..60", nullptr,
-                               dp.phi_deg, &dp.phi_deg, nullptr));
-    PetscCall(PetscOptionsReal("-dilation_angle", "Dilation angle psi (degrees), 0..phi", nullptr,
-                               dp.psi_deg, &dp.psi_deg, nullptr));
-    PetscCall(PetscOptionsReal("-hardening", "Linear hardening of cohesion dc/deps_p (Pa), >= 0",
-                               nullptr, dp.hardening, &dp.hardening, nullptr));
-    PetscCall(PetscOptionsReal("-tension_cutoff",
-                               "Largest mean stress p (Pa, tension > 0); "
-                               "default none",
-                               nullptr, dp.tension_cutoff, &dp.tension_cutoff, nullptr));
-    PetscCall(PetscOptionsEnum("-match", "Mohr-Coulomb matching: outer, inner, plane_strain",
-                               nullptr, DPMatchNames, (PetscEnum)dp.match, (PetscEnum *)&dp.match,
-                               nullptr));
+    PetscCall(PmpmOptionsReal("-cohesion", "Drucker-Prager cohesion c (Pa), >= 0", nullptr,
+                              dp.cohesion, &dp.cohesion, nullptr));
+    PetscCall(PmpmOptionsReal("-friction_angle", "Friction angle phi (degrees), 0..60", nullptr,
+                              dp.phi_deg, &dp.phi_deg, nullptr));
+    PetscCall(PmpmOptionsReal("-dilation_angle", "Dilation angle psi (degrees), 0..phi", nullptr,
+                              dp.psi_deg, &dp.psi_deg, nullptr));
+    PetscCall(PmpmOptionsReal("-hardening", "Linear hardening of cohesion dc/deps_p (Pa), >= 0",
+                              nullptr, dp.hardening, &dp.hardening, nullptr));
+    PetscCall(PmpmOptionsReal("-tension_cutoff",
+                              "Largest mean stress p (Pa, tension > 0); "
+                              "default none",
+                              nullptr, dp.tension_cutoff, &dp.tension_cutoff, nullptr));
+    PetscCall(PmpmOptionsEnum("-match", "Mohr-Coulomb matching: outer, inner, plane_strain",
+                              nullptr, DPMatchNames, (PetscEnum)dp.match, (PetscEnum *)&dp.match,
+                              nullptr));
   }
   if (model == MaterialModel::VonMises) {
-    PetscCall(PetscOptionsReal("-yield_stress", "von Mises initial yield stress (Pa), > 0", nullptr,
-                               vm.sigma_y0, &vm.sigma_y0, nullptr));
-    PetscCall(PetscOptionsReal("-hardening", "Linear isotropic hardening modulus H (Pa), >= 0",
-                               nullptr, vm.hardening, &vm.hardening, nullptr));
+    PetscCall(PmpmOptionsReal("-yield_stress", "von Mises initial yield stress (Pa), > 0", nullptr,
+                              vm.sigma_y0, &vm.sigma_y0, nullptr));
+    PetscCall(PmpmOptionsReal("-hardening", "Linear isotropic hardening modulus H (Pa), >= 0",
+                              nullptr, vm.hardening, &vm.hardening, nullptr));
   }
   PetscOptionsEnd();
   PetscCheck(hasE, comm, PETSC_ERR_USER_INPUT, "-%sE is required (Young's modulus in Pa)",
              prefix.c_str());
   PetscCheck(hasnu, comm, PETSC_ERR_USER_INPUT, "-%snu is required (Poisson's ratio)",
              prefix.c_str());
-  PetscCheck(m.el.E > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sE must be > 0 (got %g)",
-             prefix.c_str(), m.el.E);
+  // Sane ranges: the stiffest solids are near 1e12 Pa, the landfill's scaled model loads its soil
+  // with gamma = 1.5e9 N/m^3 (options/landfill.opts); beyond these a value is a typo, and it
+  // would show only as a vanishing time step or an instability at step 1.
+  PetscCheck(m.el.E > 0 && m.el.E <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-%sE must be in (0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus, m.el.E);
   PetscCheck(m.el.nu > -1 && m.el.nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-%snu must be in (-1, 0.5) (got %g)", prefix.c_str(), m.el.nu);
-  PetscCheck(m.gamma >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sgamma must be >= 0 (got %g)",
-             prefix.c_str(), m.gamma);
-  PetscCheck(m.density >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sdensity must be > 0 (got %g)",
-             prefix.c_str(), m.density);
+  PetscCheck(m.gamma >= 0 && m.gamma <= kMaxUnitWeight, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-%sgamma must be in [0, %g] N/m^3 (got %g)", prefix.c_str(), kMaxUnitWeight, m.gamma);
+  PetscCheck(m.density >= 0 && m.density <= kMaxUnitWeight, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-%sdensity must be in (0, %g] kg/m^3 (got %g)", prefix.c_str(), kMaxUnitWeight,
+             m.density);
   switch (model) {
   case MaterialModel::LinearElastic:
     m.model = std::make_unique<LinearElastic>(m.el);
@@ -232,15 +246,17 @@ PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, Mater
     m.model = std::make_unique<NeoHookean>(m.el);
     break;
   case MaterialModel::DruckerPrager:
-    PetscCheck(dp.cohesion >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%scohesion must be >= 0",
-               prefix.c_str());
+    PetscCheck(dp.cohesion >= 0 && dp.cohesion <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%scohesion must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
+               dp.cohesion);
     PetscCheck(dp.phi_deg >= 0 && dp.phi_deg <= 60, comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-%sfriction_angle must be in [0, 60] degrees (got %g)", prefix.c_str(), dp.phi_deg);
     PetscCheck(dp.psi_deg >= 0 && dp.psi_deg <= dp.phi_deg, comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-%sdilation_angle must be in [0, friction_angle] (got %g)", prefix.c_str(),
                dp.psi_deg);
-    PetscCheck(dp.hardening >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%shardening must be >= 0",
-               prefix.c_str());
+    PetscCheck(dp.hardening >= 0 && dp.hardening <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%shardening must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
+               dp.hardening);
     PetscCheck(dp.phi_deg > 0 || dp.cohesion > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-%scohesion and -%sfriction_angle cannot both be 0", prefix.c_str(),
                prefix.c_str());
@@ -248,10 +264,12 @@ PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, Mater
     m.model = std::make_unique<DruckerPrager>(dp);
     break;
   case MaterialModel::VonMises:
-    PetscCheck(vm.sigma_y0 > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-%syield_stress must be > 0 (got %g)", prefix.c_str(), vm.sigma_y0);
-    PetscCheck(vm.hardening >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%shardening must be >= 0",
-               prefix.c_str());
+    PetscCheck(vm.sigma_y0 > 0 && vm.sigma_y0 <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%syield_stress must be in (0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
+               vm.sigma_y0);
+    PetscCheck(vm.hardening >= 0 && vm.hardening <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%shardening must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
+               vm.hardening);
     vm.el = m.el;
     m.model = std::make_unique<VonMises>(vm);
     break;
@@ -288,16 +306,16 @@ PetscErrorCode BoundaryFromOptions(Simulation &sim) {
     char opt[32], topt[32], help[160];
     snprintf(opt, sizeof(opt), "-%s", kFaceNames[f]);
     snprintf(topt, sizeof(topt), "-%s_traction", kFaceNames[f]);
-    PetscCall(PetscOptionsEnum(opt, "Face condition: free, roller (normal velocity 0), fixed",
-                               nullptr, FaceBCNames, (PetscEnum)sim.face[f],
-                               (PetscEnum *)&sim.face[f], nullptr));
+    PetscCall(PmpmOptionsEnum(opt, "Face condition: free, roller (normal velocity 0), fixed",
+                              nullptr, FaceBCNames, (PetscEnum)sim.face[f],
+                              (PetscEnum *)&sim.face[f], nullptr));
     snprintf(help, sizeof(help),
              "Traction tx,ty (Pa) on the body's outermost particles toward the %s face "
              "(dead load, ramped with the loads; the face must be free)",
              kFaceNames[f]);
     PetscInt n = DIM;
     PetscBool set = PETSC_FALSE;
-    PetscCall(PetscOptionsRealArray(topt, help, nullptr, sim.face_traction[f], &n, &set));
+    PetscCall(PmpmOptionsRealArray(topt, help, nullptr, sim.face_traction[f], &n, &set));
     PetscCheck(!set || n == DIM, sim.comm, PETSC_ERR_USER_INPUT,
                "-bc_%s_traction needs %d components, got %" PetscInt_FMT, kFaceNames[f], DIM, n);
   }
@@ -415,8 +433,8 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
              "catenary, pullout, trench, cover, footing, trapdoor",
              sim.set.scene.c_str());
   PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
-  PetscCall(PetscOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
-                             sim.chain_spacing, &sim.chain_spacing, nullptr));
+  PetscCall(PmpmOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
+                            sim.chain_spacing, &sim.chain_spacing, nullptr));
   PetscOptionsEnd();
   PetscCall(sim.scene->setup(sim));
   PetscCall(BoundaryFromOptions(sim));
@@ -444,7 +462,14 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
     } else if (m.density <= 0) {
       m.density = m.gamma > 0 ? m.gamma / 9.81 : 1000.0;
     }
-    cmax = std::fmax(cmax, std::sqrt(m.model->wave_modulus() / m.density));
+    const double c = std::sqrt(m.model->wave_modulus() / m.density);
+    PetscCheck(c <= kMaxWaveSpeed, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-mat_%s_E %g Pa over the density %g kg/m^3 (-mat_%s_density, or -mat_%s_gamma / "
+               "9.81) gives a wave speed of %g m/s, above %g m/s: the time step would be %g s "
+               "(-cfl x -cell_size / wave speed); check -mat_%s_E and its density",
+               m.name.c_str(), m.el.E, m.density, m.name.c_str(), m.name.c_str(), c, kMaxWaveSpeed,
+               sim.set.cfl * sim.set.h / c, m.name.c_str());
+    cmax = std::fmax(cmax, c);
   }
   sim.wave_modulus.clear();
   for (auto &m : sim.mats) {
@@ -458,29 +483,29 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscBool type_set = PETSC_FALSE;
   PetscOptionsBegin(sim.comm, "interface_", "Interface of the colour-1 body (geomembrane)",
                     nullptr);
-  PetscCall(PetscOptionsEnum("-type",
-                             "bonded (one velocity field), paper (Coulomb friction-slip of "
-                             "section 3.2), contact (Bardenhagen multi-velocity friction); "
-                             "for a chain, the default of -chain_<name>_interface (contact)",
-                             nullptr, InterfaceTypeNames, (PetscEnum)sim.iface.type,
-                             (PetscEnum *)&sim.iface.type, &type_set));
+  PetscCall(PmpmOptionsEnum("-type",
+                            "bonded (one velocity field), paper (Coulomb friction-slip of "
+                            "section 3.2), contact (Bardenhagen multi-velocity friction); "
+                            "for a chain, the default of -chain_<name>_interface (contact)",
+                            nullptr, InterfaceTypeNames, (PetscEnum)sim.iface.type,
+                            (PetscEnum *)&sim.iface.type, &type_set));
   // each type's own normals unless asked otherwise: the paper's cells, Bardenhagen's gradient
   sim.iface.normals = sim.iface.type == InterfaceType::Contact ? InterfaceNormals::Particles
                                                                : InterfaceNormals::Cells;
-  PetscCall(PetscOptionsEnum("-normals",
-                             "cells (the paper's central differences of cell-average colour; "
-                             "default of paper) or particles (sum of V c grad S over body 1; "
-                             "default of contact)",
-                             nullptr, InterfaceNormalsNames, (PetscEnum)sim.iface.normals,
-                             (PetscEnum *)&sim.iface.normals, nullptr));
-  PetscCall(PetscOptionsReal("-mu_top", "Friction coefficient on the body's upper face, >= 0",
-                             nullptr, sim.iface.mu_top, &sim.iface.mu_top, nullptr));
-  PetscCall(PetscOptionsReal("-mu_bottom", "Friction coefficient on the body's lower face, >= 0",
-                             nullptr, sim.iface.mu_bottom, &sim.iface.mu_bottom, nullptr));
-  PetscCall(PetscOptionsReal("-tail_share",
-                             "Below this share of a node's mass a body takes the common "
-                             "acceleration there and keeps its relative velocity, 0 <= s < 0.5",
-                             nullptr, sim.iface.tail_share, &sim.iface.tail_share, nullptr));
+  PetscCall(PmpmOptionsEnum("-normals",
+                            "cells (the paper's central differences of cell-average colour; "
+                            "default of paper) or particles (sum of V c grad S over body 1; "
+                            "default of contact)",
+                            nullptr, InterfaceNormalsNames, (PetscEnum)sim.iface.normals,
+                            (PetscEnum *)&sim.iface.normals, nullptr));
+  PetscCall(PmpmOptionsReal("-mu_top", "Friction coefficient on the body's upper face, >= 0",
+                            nullptr, sim.iface.mu_top, &sim.iface.mu_top, nullptr));
+  PetscCall(PmpmOptionsReal("-mu_bottom", "Friction coefficient on the body's lower face, >= 0",
+                            nullptr, sim.iface.mu_bottom, &sim.iface.mu_bottom, nullptr));
+  PetscCall(PmpmOptionsReal("-tail_share",
+                            "Below this share of a node's mass a body takes the common "
+                            "acceleration there and keeps its relative velocity, 0 <= s < 0.5",
+                            nullptr, sim.iface.tail_share, &sim.iface.tail_share, nullptr));
   PetscOptionsEnd();
   PetscCheck(sim.iface.tail_share >= 0 && sim.iface.tail_share < 0.5, sim.comm,
              PETSC_ERR_ARG_OUTOFRANGE, "-interface_tail_share must be in [0, 0.5) (got %g)",
@@ -505,11 +530,11 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
                              "materials (the load is unchanged); default: on under "
                              "-inertia_scaling wave_speed",
                              nullptr, chain_scaling, &chain_scaling, nullptr));
-  PetscCall(PetscOptionsReal("-chain_tail_share",
-                             "A sheet with less than this share of a node's mass and no body on "
-                             "one side of it there moves with the bodies at the node, 0 <= s < 0.5",
-                             nullptr, sim.contact.chain_tail_share, &sim.contact.chain_tail_share,
-                             nullptr));
+  PetscCall(PmpmOptionsReal("-chain_tail_share",
+                            "A sheet with less than this share of a node's mass and no body on "
+                            "one side of it there moves with the bodies at the node, 0 <= s < 0.5",
+                            nullptr, sim.contact.chain_tail_share, &sim.contact.chain_tail_share,
+                            nullptr));
   PetscOptionsEnd();
   PetscCheck(sim.contact.chain_tail_share >= 0 && sim.contact.chain_tail_share < 0.5, sim.comm,
              PETSC_ERR_ARG_OUTOFRANGE, "-chain_tail_share must be in [0, 0.5) (got %g)",

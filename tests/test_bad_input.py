@@ -1,6 +1,8 @@
-"""Bad input: each case must exit non-zero, name the offending option or file, and leave no output;
-a misspelled option or one no part of the run reads is bad input too; on 2 ranks an error all ranks
-meet is one line.
+"""Bad input: each case must exit with code 1, name the offending option or file in one line (no
+PETSc traceback), and leave no output; a misspelled option or one no part of the run reads is bad
+input too, and so are options files PETSc cannot read (include cycles, garbage, directories),
+numbers that are not numbers or not finite, and a restart that changes its checkpoint's model; on
+2 ranks an error all ranks meet is one line.
 
 usage: test_bad_input.py EXE OUTDIR
 """
@@ -12,6 +14,26 @@ from pmpmtest import Checks, run
 
 exe, out = sys.argv[1], sys.argv[2]
 c = Checks("bad_input")
+# Options files for the cases below (outside every case's output directory): one including
+# itself, two including each other, a line that is only "-", a binary file, a directory.
+files = f"{out}/options_files"
+os.makedirs(files, exist_ok=True)
+for name, text in [("self.opts", f"-scene bar\n-options_file {files}/self.opts\n"),
+                   ("ping.opts", f"-options_file {files}/pong.opts\n"),
+                   ("pong.opts", f"-options_file {files}/ping.opts\n"),
+                   ("dash.opts", "-scene bar\n-\n")]:
+    with open(f"{files}/{name}", "w") as f:
+        f.write(text)
+with open(f"{files}/garbage.opts", "wb") as f:
+    f.write(bytes(range(256)) * 4)
+os.makedirs(f"{files}/a_directory.opts", exist_ok=True)
+# A checkpoint of the void cover (step 100) to restart with a changed model option; its run may
+# stop at -max_steps (not converged): only the checkpoint is wanted.
+ck = f"{out}/void_checkpoint"
+run(exe, 1, ["-options_file", "tests/cover_void.opts", "-checkpoint_every", "100", "-max_steps",
+             "150"], ck, expect_ok=False)
+c.check("void cover checkpoint for the restart case", os.path.isfile(f"{ck}/checkpoint_100.h5"))
+CUT = ["-options_file", "options/cover_sinkhole.opts"]
 cases = [
     ("unknown shape", ["-options_file", "options/bar.opts", "-shape", "quadratic"], "-shape"),
     ("unknown scene", ["-scene", "tunnel", "-cell_size", "0.1"], "-scene"),
@@ -131,6 +153,67 @@ cases = [
                            "-fbar"], "-fbar"),
     ("misspelled option", ["-options_file", "options/bar.opts", "-cell_sise", "0.001"],
      "-cell_sise"),
+    # options files: a cycle segfaulted, garbage printed PETSc's 17-line traceback
+    ("options file including itself", ["-options_file", f"{files}/self.opts"], "self.opts"),
+    ("options files including each other", ["-options_file", f"{files}/ping.opts"],
+     "ping.opts -> "),
+    ("options file line that is only -", ["-options_file", f"{files}/dash.opts"],
+     "dash.opts line 2"),
+    ("binary options file", ["-options_file", f"{files}/garbage.opts"], "garbage.opts"),
+    ("options file that is a directory", ["-options_file", f"{files}/a_directory.opts"],
+     "a_directory.opts is a directory"),
+    ("options file without a name", ["-options_file", "options/bar.opts", "-options_file"],
+     "-options_file needs a file name"),
+    # values that are not numbers, several where one is read, non-finite or absurd
+    ("cell size not a number", ["-options_file", "options/bar.opts", "-cell_size", "abc"],
+     "-cell_size expects one real number"),
+    ("cell size as a list", ["-options_file", "options/bar.opts", "-cell_size", "0.05,0.1"],
+     "-cell_size expects one real number"),
+    ("ppc not an integer", ["-options_file", "options/bar.opts", "-ppc", "2.5"],
+     "-ppc expects one integer"),
+    ("modulus as a list", ["-options_file", "options/bar.opts", "-mat_bar_E", "1e7,2e7"],
+     "-mat_bar_E expects one real number"),
+    ("cover void widths not numbers", CUT + ["-cover_void_widths", "abc"], "-cover_void_widths"),
+    ("gravity direction not finite", ["-options_file", "options/bar.opts", "-gravity_dir",
+                                      "nan,1"], "-gravity_dir must be finite"),
+    ("infinite modulus", ["-options_file", "options/bar.opts", "-mat_bar_E", "inf"],
+     "-mat_bar_E must be a finite"),
+    ("modulus 1e308", ["-options_file", "options/bar.opts", "-mat_bar_E", "1e308"],
+     "-mat_bar_E must be in (0, 1e+13]"),
+    ("modulus overflowing to inf", ["-options_file", "options/bar.opts", "-mat_bar_E", "1e400"],
+     "-mat_bar_E must be a finite"),
+    ("unit weight 1e308", ["-options_file", "options/bar.opts", "-mat_bar_gamma", "1e308"],
+     "-mat_bar_gamma must be in [0, 1e+12]"),
+    # E = 1e7 Pa over a density of 1e-10 kg/m^3: 3.6e8 m/s, a time step of 7e-11 s
+    ("wave speed far above any solid's", ["-options_file", "options/bar.opts", "-mat_bar_gamma",
+                                          "1e-9"], "-mat_bar_E 1e+07 Pa over the density"),
+    ("traction not a number", ["-options_file", "options/bar.opts", "-bar_traction", "nan"],
+     "-bar_traction must be a finite"),
+    ("pull-out force infinite", ["-options_file", "options/pullout.opts", "-pullout_force", "inf"],
+     "-pullout_force must be a finite"),
+    ("face traction not a number", ["-options_file", "options/bar.opts", "-bc_xmax_traction",
+                                    "nan,0"], "-bc_xmax_traction must be finite"),
+    ("gravity direction with three components", ["-options_file", "options/bar.opts",
+                                                 "-gravity_dir", "0,-1,0"],
+     "-gravity_dir takes at most 2 values"),
+    ("negative progress interval", ["-options_file", "options/bar.opts", "-progress_interval",
+                                    "-1"], "-progress_interval must be >= 0"),
+    # a given size of 0 or less is refused, not taken for "the default"
+    ("trapdoor height 0", ["-options_file", "options/trapdoor.opts", "-trapdoor_height", "0"],
+     "-trapdoor_height must be > 0"),
+    ("trapdoor height negative", ["-options_file", "options/trapdoor.opts", "-trapdoor_height",
+                                  "-5"], "-trapdoor_height must be > 0"),
+    ("footing soil depth 0", ["-options_file", "options/footing.opts", "-footing_soil_depth",
+                              "0"], "-footing_soil_depth must be > 0"),
+    ("two membranes under one cover layer",
+     CUT + ["-cover_membranes", "hdpe,gcl", "-cover_membrane_gcl_under", "drainage",
+            "-cover_membrane_gcl_thickness", "0.005", "-mat_gcl_law", "tension_only",
+            "-mat_gcl_E", "1e8", "-mat_gcl_nu", "0.3", "-mat_gcl_gamma", "1e4"],
+     "-cover_membrane_gcl_under drainage: membrane hdpe already lies under"),
+    # a restart refuses a changed model option, naming it
+    ("restart with the void moved", ["-options_file", "tests/cover_void.opts", "-restart",
+                                     f"{ck}/checkpoint_100.h5", "-cover_void_x", "5"],
+     "-cover_void_x changed from 6"),
     ("an option of another material model", ["-options_file", "options/bar.opts",
                                              "-mat_bar_cohesion", "5e3"], "-mat_bar_cohesion"),
 ]
@@ -148,8 +231,11 @@ with ThreadPoolExecutor(max_workers=4) as pool:
 for (what, args, needle), (code, text) in zip(cases, results):
     d = f"{out}/{what.replace(' ', '_')}"
     msg = next((l for l in text.splitlines() if l.startswith("pmpm: error") and needle in l), "")
-    c.check(f"{what}: non-zero exit", code != 0, f"(exit {code})")
+    c.check(f"{what}: exit code 1", code == 1, f"(exit {code})")
     c.check(f"{what}: message names {needle}", bool(msg), f"[{msg.strip()[:110]}]")
+    c.check(f"{what}: one error line, no PETSc traceback",
+            sum(l.startswith("pmpm: error") for l in text.splitlines()) == 1 and
+            "PETSC ERROR" not in text, f"({len(text.splitlines())} lines)")
     c.check(f"{what}: no output written", not os.path.exists(d))
 
 # -output_dir that cannot be used: checked before the run (one line naming -output_dir and the
@@ -169,12 +255,29 @@ for what, path in [("an existing file", afile), ("a path under a file", f"{afile
     c.check(f"-output_dir {what}: nothing written", os.path.isfile(afile) and
             open(afile).read() == "not a directory\n" and not os.path.exists(f"{afile}/sub"))
 
-# On 2 ranks an error every rank meets is printed once (rank 0), without a rank number.
-d = f"{out}/two_ranks"
-code, text = run(exe, 2, ["-options_file", "options/bar.opts", "-mat_bar_E", "-1"], d,
-                 expect_ok=False)
+# -output_dir "" wrote summary.json and particles.h5 into /: refused (run() passes it last)
+code, text = run(exe, 1, ["-options_file", "options/bar.opts"], "", expect_ok=False)
 lines = [l for l in text.splitlines() if l.startswith("pmpm: error")]
-c.check("2 ranks: non-zero exit", code != 0, f"(exit {code})")
-c.check("2 ranks: one error line", len(lines) == 1 and "-mat_bar_E" in lines[0], f"({lines})")
-c.check("2 ranks: no output written", not os.path.exists(d))
+c.check("-output_dir empty: exit code 1", code == 1, f"(exit {code})")
+c.check("-output_dir empty: one line naming -output_dir", len(lines) == 1 and
+        "-output_dir is empty" in lines[0], f"[{lines[0][:110] if lines else ''}]")
+c.check("-output_dir empty: nothing written to / or here",
+        not any(os.path.exists(f"{p}/summary.json") for p in ("/", ".")))
+
+# On 2 ranks an error every rank meets is printed once (rank 0), without a rank number: an
+# option's, and the options files' (checked before PETSc starts, once printed per rank).
+for what, args, needle in [
+        ("bad modulus", ["-options_file", "options/bar.opts", "-mat_bar_E", "-1"], "-mat_bar_E"),
+        ("missing options file", ["-options_file", "options/no_such_scene.opts"],
+         "no_such_scene.opts"),
+        ("options file without a name", ["-options_file"], "-options_file needs a file name"),
+        ("options files including each other", ["-options_file", f"{files}/ping.opts"],
+         "ping.opts")]:
+    d = f"{out}/two_ranks"
+    code, text = run(exe, 2, args, d, expect_ok=False)
+    lines = [l for l in text.splitlines() if l.startswith("pmpm: error")]
+    c.check(f"2 ranks, {what}: exit code 1", code == 1, f"(exit {code})")
+    c.check(f"2 ranks, {what}: one error line", len(lines) == 1 and needle in lines[0],
+            f"({lines})")
+    c.check(f"2 ranks, {what}: no output written", not os.path.exists(d))
 c.done()

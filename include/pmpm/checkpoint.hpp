@@ -12,7 +12,9 @@
 // another rank count the particles are redistributed to the ranks owning their cells and the
 // result agrees to round-off. A checkpoint of another scene, cell size, grid or particle set is
 // refused, and so is a file that is not a complete pmpm checkpoint, with one line naming
-// -restart and the file.
+// -restart and the file. The checkpoint keeps every option its run was given; a restart that
+// adds, drops or changes one other than run control (-max_steps, -output_*, -checkpoint_*,
+// -progress_interval, -quiet, -memory_limit, -balance*, -da_processors_*) is refused naming it.
 #pragma once
 #include "pmpm/simulation.hpp"
 #include <string>

@@ -10,6 +10,7 @@
 // (V sigma : C^-1 : sigma / 2) at every step. With -transfer apic the particles start with the
 // field's gradient as their affine part (B_p = C D_p) and the kinetic energy includes it
 // (affine_kinetic, at the particles' current D_p).
+#include "pmpm/options.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
 #include "pmpm/output.hpp"
@@ -28,17 +29,18 @@ class BarScene final : public Scene {
 
 public:
   PetscErrorCode setup(Simulation &sim) override {
+    PetscBool box_set = PETSC_FALSE;
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "bar_", "Bar under end traction (paper Figure 2)", nullptr);
-    PetscCall(PetscOptionsReal("-length", "Bar length L (m)", nullptr, L_, &L_, nullptr));
-    PetscCall(PetscOptionsReal("-height", "Bar height B (m)", nullptr, B_, &B_, nullptr));
-    PetscCall(PetscOptionsReal("-traction", "End traction t (Pa, tension > 0)", nullptr, t_, &t_,
-                               nullptr));
-    PetscCall(PetscOptionsReal("-box_length", "Grid length in x (m), >= L + 2 cells; default 1.5 L",
-                               nullptr, box_, &box_, nullptr));
-    PetscCall(PetscOptionsReal(
-        "-initial_velocity", "Vibrating bar: initial v_x = v0 sin(pi x / 2L) (m/s); 0: static bar",
-        nullptr, v0_, &v0_, nullptr));
+    PetscCall(PmpmOptionsReal("-length", "Bar length L (m)", nullptr, L_, &L_, nullptr));
+    PetscCall(PmpmOptionsReal("-height", "Bar height B (m)", nullptr, B_, &B_, nullptr));
+    PetscCall(PmpmOptionsReal("-traction", "End traction t (Pa, tension > 0)", nullptr, t_, &t_,
+                              nullptr));
+    PetscCall(PmpmOptionsReal("-box_length", "Grid length in x (m), >= L + 2 cells; default 1.5 L",
+                              nullptr, box_, &box_, &box_set));
+    PetscCall(PmpmOptionsReal("-initial_velocity",
+                              "Vibrating bar: initial v_x = v0 sin(pi x / 2L) (m/s); 0: static bar",
+                              nullptr, v0_, &v0_, nullptr));
     PetscCall(PetscOptionsBool("-top_roller",
                                "Roller on the bar's top face y = B (the grid ends there): with "
                                "nu = 0 the bar is one-dimensional",
@@ -47,6 +49,8 @@ public:
     PetscInt nB, nbox;
     PetscCall(CheckCells(sim.comm, "-bar_length", L_, sim.set.h, &nL_));
     PetscCall(CheckCells(sim.comm, "-bar_height", B_, sim.set.h, &nB));
+    PetscCheck(!box_set || box_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-bar_box_length must be > 0 m (got %g; default 1.5 L)", box_);
     if (box_ <= 0) box_ = sim.set.h * std::ceil(1.5 * L_ / sim.set.h);
     PetscCall(CheckCells(sim.comm, "-bar_box_length", box_, sim.set.h, &nbox));
     PetscCheck(nbox >= nL_ + 2, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,

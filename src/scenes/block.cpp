@@ -13,6 +13,7 @@
 // With -transfer apic the particles' spin m_p (B_yx - B_xy) is part of the angular momentum
 // (affine.hpp), and the initial rigid rotation gives each particle its affine part,
 // B_p = C D_p with C = omega [0 -1; 1 0], so that the block starts as one rigid body.
+#include "pmpm/options.hpp"
 #include "pmpm/affine.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/output.hpp"
@@ -86,23 +87,23 @@ public:
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "block_", "Free elastic block in an empty box (migration test)",
                       nullptr);
-    PetscCall(PetscOptionsReal("-length", "Block length (m)", nullptr, Lb_, &Lb_, nullptr));
-    PetscCall(PetscOptionsReal("-height", "Block height (m)", nullptr, Hb_, &Hb_, nullptr));
-    PetscCall(PetscOptionsRealArray("-box", "Box size Lx,Ly (m)", nullptr, box_, &n, nullptr));
+    PetscCall(PmpmOptionsReal("-length", "Block length (m)", nullptr, Lb_, &Lb_, nullptr));
+    PetscCall(PmpmOptionsReal("-height", "Block height (m)", nullptr, Hb_, &Hb_, nullptr));
+    PetscCall(PmpmOptionsRealArray("-box", "Box size Lx,Ly (m)", nullptr, box_, &n, nullptr));
     n = DIM;
-    PetscCall(PetscOptionsRealArray("-centre",
-                                    "Block centre at the start x,y (m); default: the box "
-                                    "centre",
-                                    nullptr, xc_, &n, nullptr));
+    PetscCall(PmpmOptionsRealArray("-centre",
+                                   "Block centre at the start x,y (m); default: the box "
+                                   "centre",
+                                   nullptr, xc_, &n, nullptr));
     n = DIM;
-    PetscCall(PetscOptionsRealArray("-velocity", "Initial translation velocity vx,vy (m/s)",
-                                    nullptr, v0_, &n, nullptr));
-    PetscCall(PetscOptionsReal("-omega", "Initial rigid rotation rate about the centre (rad/s)",
-                               nullptr, omega_, &omega_, nullptr));
-    PetscCall(PetscOptionsReal("-period",
-                               "Period of an oscillating translation v0 cos(2 pi t / T) (s); 0: "
-                               "constant velocity",
-                               nullptr, period_, &period_, nullptr));
+    PetscCall(PmpmOptionsRealArray("-velocity", "Initial translation velocity vx,vy (m/s)", nullptr,
+                                   v0_, &n, nullptr));
+    PetscCall(PmpmOptionsReal("-omega", "Initial rigid rotation rate about the centre (rad/s)",
+                              nullptr, omega_, &omega_, nullptr));
+    PetscCall(PmpmOptionsReal("-period",
+                              "Period of an oscillating translation v0 cos(2 pi t / T) (s); 0: "
+                              "constant velocity",
+                              nullptr, period_, &period_, nullptr));
     PetscOptionsEnd();
     PetscInt nx, ny;
     PetscCall(CheckCells(sim.comm, "-block_box (x)", box_[0], sim.set.h, &sim.ncell[0]));

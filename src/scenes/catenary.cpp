@@ -8,6 +8,7 @@
 // -catenary_second adds a second, independent chain ("liner", material -mat_liner_*) hanging
 // -catenary_second_drop below the first: several named chains per scene, each with its own
 // material, checked against its own closed form.
+#include "pmpm/options.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
 #include <cmath>
@@ -45,24 +46,25 @@ class CatenaryScene final : public Scene {
 public:
   PetscErrorCode setup(Simulation &sim) override {
     PetscInt n = DIM;
+    PetscBool drop_set = PETSC_FALSE;
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "catenary_", "Catenary: one chain pinned at both ends", nullptr);
-    PetscCall(PetscOptionsReal("-span", "Span l between the supports (m), > 0", nullptr, span_,
-                               &span_, nullptr));
-    PetscCall(PetscOptionsRealArray("-offset",
-                                    "Shift of the chain against the grid, dx,dy (m; a fraction "
-                                    "of a cell tests grid independence)",
-                                    nullptr, off_, &n, nullptr));
+    PetscCall(PmpmOptionsReal("-span", "Span l between the supports (m), > 0", nullptr, span_,
+                              &span_, nullptr));
+    PetscCall(PmpmOptionsRealArray("-offset",
+                                   "Shift of the chain against the grid, dx,dy (m; a fraction "
+                                   "of a cell tests grid independence)",
+                                   nullptr, off_, &n, nullptr));
     PetscCall(PetscOptionsBool("-second",
                                "A second chain (\"liner\", material -mat_liner_*, thickness "
                                "-membrane_thickness) below the first",
                                nullptr, second_, &second_, nullptr));
-    PetscCall(PetscOptionsReal("-second_drop", "How far the second chain hangs below the first (m)",
-                               nullptr, drop_, &drop_, nullptr));
+    PetscCall(PmpmOptionsReal("-second_drop", "How far the second chain hangs below the first (m)",
+                              nullptr, drop_, &drop_, &drop_set));
     PetscOptionsEnd();
     PetscOptionsBegin(sim.comm, "membrane_", "The membrane", nullptr);
     PetscCall(
-        PetscOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
+        PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
     PetscOptionsEnd();
     PetscCheck(span_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-catenary_span must be > 0 (got %g)",
                span_);
@@ -90,6 +92,10 @@ public:
       ps.line = {0, 0, span_, 0};
       PetscCall(ChainCreate(sim.comm, ps, span_, probe2));
       ex2_ = SolveCatenary(span_, span_, probe2.line_weight, probe2.law.J);
+      PetscCheck(!drop_set || drop_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-catenary_second_drop must be > 0 m (got %g; default below the first chain's "
+                 "sag)",
+                 drop_);
       if (drop_ <= 0) drop_ = 1.2 * ex_.sag + 2 * h; // below the first chain's sag
       depth = std::fmax(depth, drop_ + ex2_.sag);
     }

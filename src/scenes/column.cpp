@@ -6,6 +6,7 @@
 //   linear elastic (Jaumann rate): sigma_yy = M ln J          -> J = exp(sigma / M)
 //   neo-Hookean:   sigma_yy = (lambda ln J + mu (J^2 - 1)) / J (solved by Newton)
 // For small strain both reduce to u_y = -(gamma / M)(H Y - Y^2 / 2).
+#include "pmpm/options.hpp"
 #include "pmpm/materials/elastic.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
@@ -47,12 +48,15 @@ class ColumnScene final : public Scene {
 
 public:
   PetscErrorCode setup(Simulation &sim) override {
+    PetscBool w_set = PETSC_FALSE;
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "column_", "Column under self-weight", nullptr);
-    PetscCall(PetscOptionsReal("-height", "Column height H (m)", nullptr, H_, &H_, nullptr));
+    PetscCall(PmpmOptionsReal("-height", "Column height H (m)", nullptr, H_, &H_, nullptr));
     PetscCall(
-        PetscOptionsReal("-width", "Column width (m); default 4 cells", nullptr, W_, &W_, nullptr));
+        PmpmOptionsReal("-width", "Column width (m); default 4 cells", nullptr, W_, &W_, &w_set));
     PetscOptionsEnd();
+    PetscCheck(!w_set || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-column_width must be > 0 m (got %g; default 4 cells)", W_);
     if (W_ <= 0) W_ = 4 * sim.set.h;
     PetscInt nH, nW;
     PetscCall(CheckCells(sim.comm, "-column_height", H_, sim.set.h, &nH));

@@ -18,6 +18,7 @@
 // Geometry need not fit the grid: particles fill each band (waste, then each layer) column by
 // column, with the band's thickness at the column split into whole rows, so a 0.3 m layer is
 // 0.3 m thick at any cell size (blocks are at most h / ppc tall and at most h / 2, as PMPM needs).
+#include "pmpm/options.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/giroud.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
@@ -189,25 +190,25 @@ class CoverScene final : public Scene {
     PetscFunctionBeginUser;
     PetscCall(PetscStrncpy(wbuf, waste_mat_.c_str(), sizeof(wbuf)));
     PetscOptionsBegin(sim.comm, "cover_", "Field-scale landfill cover (FIELD.md)", nullptr);
-    PetscCall(PetscOptionsReal("-width", "Width of the model W (m)", nullptr, W_, &W_, nullptr));
-    PetscCall(PetscOptionsReal("-waste_height",
-                               "Waste thickness at x = 0 (m; the deck, without a side slope)",
-                               nullptr, Hw_, &Hw_, nullptr));
-    PetscCall(PetscOptionsReal("-deck_grade", "Top deck grade (per cent, rising to the right)",
-                               nullptr, grade_, &grade_, nullptr));
-    PetscCall(PetscOptionsReal("-slope_angle", "Side slope angle beta (degrees; 0: no side slope)",
-                               nullptr, slope_deg_, &slope_deg_, nullptr));
-    PetscCall(PetscOptionsReal("-slope_length",
-                               "Side slope length along the slope from toe to crest (m)", nullptr,
-                               slope_len_, &slope_len_, nullptr));
-    PetscCall(PetscOptionsReal("-toe_x",
-                               "x of the slope's toe (m); the ground left of it is level at "
-                               "-cover_waste_height",
-                               nullptr, toe_x_, &toe_x_, nullptr));
-    PetscCall(PetscOptionsRealArray("-surface",
-                                    "Waste surface as a polyline x0,y0,x1,y1,... (m, x "
-                                    "increasing from 0 to W; overrides the deck and slope)",
-                                    nullptr, surf.data(), &nsurf, &surf_set));
+    PetscCall(PmpmOptionsReal("-width", "Width of the model W (m)", nullptr, W_, &W_, nullptr));
+    PetscCall(PmpmOptionsReal("-waste_height",
+                              "Waste thickness at x = 0 (m; the deck, without a side slope)",
+                              nullptr, Hw_, &Hw_, nullptr));
+    PetscCall(PmpmOptionsReal("-deck_grade", "Top deck grade (per cent, rising to the right)",
+                              nullptr, grade_, &grade_, nullptr));
+    PetscCall(PmpmOptionsReal("-slope_angle", "Side slope angle beta (degrees; 0: no side slope)",
+                              nullptr, slope_deg_, &slope_deg_, nullptr));
+    PetscCall(PmpmOptionsReal("-slope_length",
+                              "Side slope length along the slope from toe to crest (m)", nullptr,
+                              slope_len_, &slope_len_, nullptr));
+    PetscCall(PmpmOptionsReal("-toe_x",
+                              "x of the slope's toe (m); the ground left of it is level at "
+                              "-cover_waste_height",
+                              nullptr, toe_x_, &toe_x_, nullptr));
+    PetscCall(PmpmOptionsRealArray("-surface",
+                                   "Waste surface as a polyline x0,y0,x1,y1,... (m, x "
+                                   "increasing from 0 to W; overrides the deck and slope)",
+                                   nullptr, surf.data(), &nsurf, &surf_set));
     PetscCall(PetscOptionsStringArray("-layers", "Cover layers from the top down (names)", nullptr,
                                       lnames, &nl, &l_set));
     PetscCall(PetscOptionsString("-waste_material", "Material of the waste (-mat_<name>_*)",
@@ -215,51 +216,50 @@ class CoverScene final : public Scene {
     PetscCall(PetscOptionsStringArray(
         "-membranes", "Geomembranes as chains (names; each -cover_membrane_<name>_under)", nullptr,
         mnames, &nm, &m_set));
-    PetscCall(PetscOptionsReal("-shrink_total",
-                               "Waste degradation: total volumetric shrinkage e_v of the zone "
-                               "(log strain, 0..0.6; 0: none)",
-                               nullptr, shrink_total_, &shrink_total_, nullptr));
-    PetscCall(PetscOptionsInt("-shrink_stages", "Stages the shrinkage is applied in (equal parts)",
-                              nullptr, shrink_stages_, &shrink_stages_, nullptr));
-    PetscCall(PetscOptionsInt("-shrink_steps",
-                              "Steps over which each stage's shrinkage is applied (0: auto, "
-                              "25 wave transits of the model's height)",
-                              nullptr, shrink_steps_, &shrink_steps_, nullptr));
-    PetscCall(PetscOptionsEnum("-shrink_mode",
-                               "Shrinkage eigenstrain: vertical (e*_yy = -e_v) or isotropic "
-                               "(-e_v/3 on xx, yy, zz)",
-                               nullptr, ShrinkModeNames, (PetscEnum)sim.shrink.mode,
-                               (PetscEnum *)&sim.shrink.mode, nullptr));
-    PetscCall(PetscOptionsRealArray("-shrink_x", "Degrading zone x_lo,x_hi (m; default all)",
-                                    nullptr, zx, &nz, &zx_set));
-    PetscCall(PetscOptionsReal("-shrink_taper",
-                               "Shrinkage falls linearly to 0 over this distance outside the "
-                               "zone (m)",
-                               nullptr, sim.shrink.taper, &sim.shrink.taper, nullptr));
-    PetscCall(PetscOptionsRealArray("-shrink_grade",
-                                    "Shrinkage factors at the waste base and top, bottom,top "
-                                    "(linear with height; 1,1: uniform)",
-                                    nullptr, gr, &ng, &gr_set));
+    PetscCall(PmpmOptionsReal("-shrink_total",
+                              "Waste degradation: total volumetric shrinkage e_v of the zone "
+                              "(log strain, 0..0.6; 0: none)",
+                              nullptr, shrink_total_, &shrink_total_, nullptr));
+    PetscCall(PmpmOptionsInt("-shrink_stages", "Stages the shrinkage is applied in (equal parts)",
+                             nullptr, shrink_stages_, &shrink_stages_, nullptr));
+    PetscCall(PmpmOptionsInt("-shrink_steps",
+                             "Steps over which each stage's shrinkage is applied (0: auto, "
+                             "25 wave transits of the model's height)",
+                             nullptr, shrink_steps_, &shrink_steps_, nullptr));
+    PetscCall(PmpmOptionsEnum("-shrink_mode",
+                              "Shrinkage eigenstrain: vertical (e*_yy = -e_v) or isotropic "
+                              "(-e_v/3 on xx, yy, zz)",
+                              nullptr, ShrinkModeNames, (PetscEnum)sim.shrink.mode,
+                              (PetscEnum *)&sim.shrink.mode, nullptr));
+    PetscCall(PmpmOptionsRealArray("-shrink_x", "Degrading zone x_lo,x_hi (m; default all)",
+                                   nullptr, zx, &nz, &zx_set));
+    PetscCall(PmpmOptionsReal("-shrink_taper",
+                              "Shrinkage falls linearly to 0 over this distance outside the "
+                              "zone (m)",
+                              nullptr, sim.shrink.taper, &sim.shrink.taper, nullptr));
+    PetscCall(PmpmOptionsRealArray("-shrink_grade",
+                                   "Shrinkage factors at the waste base and top, bottom,top "
+                                   "(linear with height; 1,1: uniform)",
+                                   nullptr, gr, &ng, &gr_set));
+    PetscCall(PmpmOptionsReal("-void_x", "Void centre x (m)", nullptr, void_x_, &void_x_, nullptr));
+    PetscCall(PmpmOptionsRealArray("-void_widths",
+                                   "Void width at each void stage (m, non-decreasing; none: no "
+                                   "void)",
+                                   nullptr, vw.data(), &nvoid, &vw_set));
     PetscCall(
-        PetscOptionsReal("-void_x", "Void centre x (m)", nullptr, void_x_, &void_x_, nullptr));
-    PetscCall(PetscOptionsRealArray("-void_widths",
-                                    "Void width at each void stage (m, non-decreasing; none: no "
-                                    "void)",
-                                    nullptr, vw.data(), &nvoid, &vw_set));
-    PetscCall(
-        PetscOptionsReal("-void_height", "Void height (m)", nullptr, void_h_, &void_h_, nullptr));
-    PetscCall(PetscOptionsReal("-void_depth",
-                               "Depth of the void's top below the waste surface (m; 0: it "
-                               "touches the cover)",
-                               nullptr, void_depth_, &void_depth_, nullptr));
-    PetscCall(PetscOptionsReal("-allowable_strain",
-                               "Allowable membrane strain for the PASS / EXCEEDED verdict "
-                               "(design limits for local strain are a few per cent, FIELD.md 2)",
-                               nullptr, allowable_, &allowable_, nullptr));
-    PetscCall(PetscOptionsReal("-strain_gauge",
-                               "Gauge length (m) over which the membrane's peak strain and tension "
-                               "are read, >= one cell (0: one cell)",
-                               nullptr, gauge_, &gauge_, nullptr));
+        PmpmOptionsReal("-void_height", "Void height (m)", nullptr, void_h_, &void_h_, nullptr));
+    PetscCall(PmpmOptionsReal("-void_depth",
+                              "Depth of the void's top below the waste surface (m; 0: it "
+                              "touches the cover)",
+                              nullptr, void_depth_, &void_depth_, nullptr));
+    PetscCall(PmpmOptionsReal("-allowable_strain",
+                              "Allowable membrane strain for the PASS / EXCEEDED verdict "
+                              "(design limits for local strain are a few per cent, FIELD.md 2)",
+                              nullptr, allowable_, &allowable_, nullptr));
+    PetscCall(PmpmOptionsReal("-strain_gauge",
+                              "Gauge length (m) over which the membrane's peak strain and tension "
+                              "are read, >= one cell (0: one cell)",
+                              nullptr, gauge_, &gauge_, nullptr));
     PetscCall(PetscOptionsBool(
         "-geostatic_paper",
         "Stage 0 with the membranes' faces bilateral (paper: friction, no separation); their own "
@@ -300,10 +300,10 @@ class CoverScene final : public Scene {
       const std::string pre = "cover_layer_" + L.name + "_";
       PetscOptionsBegin(sim.comm, pre.c_str(), ("Cover layer " + L.name).c_str(), nullptr);
       PetscCall(
-          PetscOptionsReal("-thickness", "Vertical thickness (m), > 0", nullptr, t, &t, nullptr));
-      PetscCall(PetscOptionsReal("-thickness_end",
-                                 "Thickness at x = W (m; default: -thickness, uniform)", nullptr,
-                                 te, &te, nullptr));
+          PmpmOptionsReal("-thickness", "Vertical thickness (m), > 0", nullptr, t, &t, nullptr));
+      PetscCall(PmpmOptionsReal("-thickness_end",
+                                "Thickness at x = W (m; default: -thickness, uniform)", nullptr, te,
+                                &te, nullptr));
       PetscCall(PetscOptionsString("-material", "Material (-mat_<name>_*; default: the layer's)",
                                    nullptr, mat, mat, sizeof(mat), nullptr));
       PetscOptionsEnd();
@@ -328,8 +328,8 @@ class CoverScene final : public Scene {
       PetscOptionsBegin(sim.comm, pre.c_str(), ("Cover membrane " + nm).c_str(), nullptr);
       PetscCall(PetscOptionsString("-under", "The layer the membrane lies under (its base)",
                                    nullptr, under, under, sizeof(under), nullptr));
-      PetscCall(PetscOptionsReal("-thickness", "Sheet thickness t (m), > 0", nullptr, M.thickness,
-                                 &M.thickness, nullptr));
+      PetscCall(PmpmOptionsReal("-thickness", "Sheet thickness t (m), > 0", nullptr, M.thickness,
+                                &M.thickness, nullptr));
       PetscCall(PetscOptionsString("-material", "Material (-mat_<name>_*; default: the membrane's)",
                                    nullptr, mat, mat, sizeof(mat), nullptr));
       PetscOptionsEnd();
@@ -342,6 +342,12 @@ class CoverScene final : public Scene {
                  "-%sunder must name one of -cover_layers (got \"%s\")", pre.c_str(), under);
       PetscCheck(M.thickness > 0, sim.comm, PETSC_ERR_USER_INPUT,
                  "-%sthickness is required and must be > 0 (got %g)", pre.c_str(), M.thickness);
+      // two sheets at the base of one layer would lie on top of each other
+      for (const Membrane &o : mem_)
+        PetscCheck(o.layer != M.layer, sim.comm, PETSC_ERR_USER_INPUT,
+                   "-%sunder %s: membrane %s already lies under layer %s (one membrane per "
+                   "layer; put it under another of -cover_layers)",
+                   pre.c_str(), under, o.name.c_str(), under);
       mem_.push_back(M);
     }
     std::sort(mem_.begin(), mem_.end(),

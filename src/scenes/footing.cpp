@@ -18,6 +18,7 @@
 // Linear cells lock under isochoric plastic flow: without -fbar the soil holds pressures above
 // q_u (tests/test_footing.py shows by how much). Dilatant Drucker-Prager (psi > 0) needs
 // -fbar_pressure cell with -fbar (antilock.hpp; options/footing_cphi.opts).
+#include "pmpm/options.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/materials/von_mises.hpp"
@@ -100,27 +101,28 @@ public:
   PetscErrorCode setup(Simulation &sim) override {
     PetscInt n = 64;
     PetscBool set = PETSC_FALSE;
+    PetscBool w_set = PETSC_FALSE, d_set = PETSC_FALSE;
     PetscFunctionBeginUser;
     q_.assign(n, 0.0);
     ramp_ = sim.set.ramp_steps;
     PetscOptionsBegin(sim.comm, "footing_", "Strip footing on weightless soil", nullptr);
-    PetscCall(PetscOptionsReal("-width", "Footing width B (m), > 0", nullptr, B_, &B_, nullptr));
-    PetscCall(PetscOptionsReal("-soil_width",
-                               "Soil half-width W from the centre line (m); default 3 B", nullptr,
-                               W_, &W_, nullptr));
-    PetscCall(PetscOptionsReal("-soil_depth", "Soil depth D (m); default 2 B", nullptr, D_, &D_,
-                               nullptr));
-    PetscCall(PetscOptionsRealArray("-pressures",
-                                    "Footing pressure of each stage (Pa), increasing, > 0", nullptr,
-                                    q_.data(), &n, &set));
-    PetscCall(PetscOptionsReal("-collapse_settlement",
-                               "Settlement over B past which a stage has collapsed (the soil "
-                               "flows on; the stage ends there), > 0",
-                               nullptr, collapse_, &collapse_, nullptr));
-    PetscCall(PetscOptionsInt("-stage_ramp",
-                              "Steps over which a later stage raises the pressure (default "
-                              "-ramp_steps)",
-                              nullptr, ramp_, &ramp_, nullptr));
+    PetscCall(PmpmOptionsReal("-width", "Footing width B (m), > 0", nullptr, B_, &B_, nullptr));
+    PetscCall(PmpmOptionsReal("-soil_width",
+                              "Soil half-width W from the centre line (m); default 3 B", nullptr,
+                              W_, &W_, &w_set));
+    PetscCall(
+        PmpmOptionsReal("-soil_depth", "Soil depth D (m); default 2 B", nullptr, D_, &D_, &d_set));
+    PetscCall(PmpmOptionsRealArray("-pressures",
+                                   "Footing pressure of each stage (Pa), increasing, > 0", nullptr,
+                                   q_.data(), &n, &set));
+    PetscCall(PmpmOptionsReal("-collapse_settlement",
+                              "Settlement over B past which a stage has collapsed (the soil "
+                              "flows on; the stage ends there), > 0",
+                              nullptr, collapse_, &collapse_, nullptr));
+    PetscCall(PmpmOptionsInt("-stage_ramp",
+                             "Steps over which a later stage raises the pressure (default "
+                             "-ramp_steps)",
+                             nullptr, ramp_, &ramp_, nullptr));
     PetscOptionsEnd();
     PetscCheck(set && n >= 1, sim.comm, PETSC_ERR_USER_INPUT,
                "-footing_pressures is required: the footing pressure of each stage (Pa)");
@@ -132,6 +134,10 @@ public:
     PetscCheck(collapse_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-footing_collapse_settlement must be > 0 (got %g)", collapse_);
     PetscCheck(ramp_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-footing_stage_ramp must be >= 0");
+    PetscCheck(!w_set || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-footing_soil_width must be > 0 m (got %g; default 3 B)", W_);
+    PetscCheck(!d_set || D_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-footing_soil_depth must be > 0 m (got %g; default 2 B)", D_);
     if (W_ <= 0) W_ = 3 * B_; // reach 3.03 B at phi = 20 deg: set it for such soils
     if (D_ <= 0) D_ = 2 * B_;
     PetscInt nb, nw, nd;

@@ -16,6 +16,7 @@
 // be rough enough to hold the sheet on the base, so the exact solution is the block sliding on a
 // fixed sheet, as above with mu the upper face's. The ends are free (-incline_chain_pin pins both,
 // as supports); results add the sheet's largest displacement.
+#include "pmpm/options.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
@@ -33,18 +34,18 @@ public:
   PetscErrorCode setup(Simulation &sim) override {
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "incline_", "Block on an incline (rotated gravity)", nullptr);
-    PetscCall(PetscOptionsReal("-angle",
-                               "Incline angle theta (degrees), 0..80; sets the gravity "
-                               "direction",
-                               nullptr, theta_, &theta_, nullptr));
-    PetscCall(PetscOptionsReal("-block_length", "Block length (m)", nullptr, Lb_, &Lb_, nullptr));
-    PetscCall(PetscOptionsReal("-block_height", "Block height (m)", nullptr, Hb_, &Hb_, nullptr));
-    PetscCall(PetscOptionsReal("-base_length", "Base slab length (m)", nullptr, Lbase_, &Lbase_,
-                               nullptr));
-    PetscCall(PetscOptionsReal("-base_height", "Base slab height (m)", nullptr, Hbase_, &Hbase_,
-                               nullptr));
-    PetscCall(PetscOptionsReal("-block_x", "Block's left end at the start (m)", nullptr, x0_, &x0_,
-                               nullptr));
+    PetscCall(PmpmOptionsReal("-angle",
+                              "Incline angle theta (degrees), 0..80; sets the gravity "
+                              "direction",
+                              nullptr, theta_, &theta_, nullptr));
+    PetscCall(PmpmOptionsReal("-block_length", "Block length (m)", nullptr, Lb_, &Lb_, nullptr));
+    PetscCall(PmpmOptionsReal("-block_height", "Block height (m)", nullptr, Hb_, &Hb_, nullptr));
+    PetscCall(
+        PmpmOptionsReal("-base_length", "Base slab length (m)", nullptr, Lbase_, &Lbase_, nullptr));
+    PetscCall(
+        PmpmOptionsReal("-base_height", "Base slab height (m)", nullptr, Hbase_, &Hbase_, nullptr));
+    PetscCall(PmpmOptionsReal("-block_x", "Block's left end at the start (m)", nullptr, x0_, &x0_,
+                              nullptr));
     PetscCall(
         PetscOptionsBool("-chain",
                          "A membrane chain (-mat_membrane_*, -membrane_thickness) on the "
@@ -55,8 +56,8 @@ public:
                                nullptr, pin_, &pin_, nullptr));
     PetscOptionsEnd();
     PetscOptionsBegin(sim.comm, "membrane_", "The membrane (with -incline_chain)", nullptr);
-    PetscCall(PetscOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, thickness_,
-                               &thickness_, nullptr));
+    PetscCall(PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, thickness_,
+                              &thickness_, nullptr));
     PetscOptionsEnd();
     PetscCheck(theta_ >= 0 && theta_ <= 80, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-incline_angle must be in [0, 80] degrees (got %g)", theta_);

@@ -14,6 +14,7 @@
 // displacement, chain strain = current/initial length of the mid-surface chain, the particles'
 // own axial strain from F, axial stress), settlements, and Giroud's analytical solution in the
 // paper's form (simulated sag plugged in) and in the self-consistent form (J = E t).
+#include "pmpm/options.hpp"
 #include "pmpm/giroud.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
@@ -185,22 +186,21 @@ public:
   PetscErrorCode setup(Simulation &sim) override {
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "landfill_", "Landfill cover (paper Section 4)", nullptr);
-    PetscCall(PetscOptionsReal("-width", "Domain width (m)", nullptr, W_, &W_, nullptr));
+    PetscCall(PmpmOptionsReal("-width", "Domain width (m)", nullptr, W_, &W_, nullptr));
+    PetscCall(PmpmOptionsReal("-waste_height", "Waste thickness (m)", nullptr, Hw_, &Hw_, nullptr));
+    PetscCall(PmpmOptionsReal("-membrane_thickness", "Geomembrane thickness t (m)", nullptr, t_,
+                              &t_, nullptr));
     PetscCall(
-        PetscOptionsReal("-waste_height", "Waste thickness (m)", nullptr, Hw_, &Hw_, nullptr));
-    PetscCall(PetscOptionsReal("-membrane_thickness", "Geomembrane thickness t (m)", nullptr, t_,
-                               &t_, nullptr));
-    PetscCall(PetscOptionsReal("-soil_height", "Cover soil thickness H (m)", nullptr, Hs_, &Hs_,
-                               nullptr));
-    PetscCall(PetscOptionsReal("-soft_diameter",
-                               "Soft zone diameter b (m), touching the "
-                               "membrane's underside",
-                               nullptr, D_, &D_, nullptr));
-    PetscCall(PetscOptionsReal("-soft_x", "Soft zone centre X (m)", nullptr, Xc_, &Xc_, nullptr));
-    PetscCall(PetscOptionsInt("-membrane_layers",
-                              "Particle layers across the membrane: 0 = the "
-                              "regular fill (ppc per cell), N >= 1 = N layers (1: the paper's)",
-                              nullptr, layers_, &layers_, nullptr));
+        PmpmOptionsReal("-soil_height", "Cover soil thickness H (m)", nullptr, Hs_, &Hs_, nullptr));
+    PetscCall(PmpmOptionsReal("-soft_diameter",
+                              "Soft zone diameter b (m), touching the "
+                              "membrane's underside",
+                              nullptr, D_, &D_, nullptr));
+    PetscCall(PmpmOptionsReal("-soft_x", "Soft zone centre X (m)", nullptr, Xc_, &Xc_, nullptr));
+    PetscCall(PmpmOptionsInt("-membrane_layers",
+                             "Particle layers across the membrane: 0 = the "
+                             "regular fill (ppc per cell), N >= 1 = N layers (1: the paper's)",
+                             nullptr, layers_, &layers_, nullptr));
     PetscCall(PetscOptionsBool("-membrane_chain",
                                "The membrane as a chain of points on top of the membrane layer "
                                "(its thickness a property; -mat_membrane_law, -interface_type)",

@@ -8,6 +8,7 @@
 // and each layer's law gives J(Y) (linear elastic, Jaumann rate: sigma = M ln J; neo-Hookean:
 // sigma = (lambda ln J + mu (J^2 - 1)) / J), u_y(Y) = int_0^Y (J - 1) dY, piecewise per layer
 // (REFERENCE.md 2.2 for one layer). Small strain: u_y = int sigma / M.
+#include "pmpm/options.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
 #include <cmath>
@@ -39,15 +40,18 @@ class LayersScene final : public Scene {
 
 public:
   PetscErrorCode setup(Simulation &sim) override {
+    PetscBool w_set = PETSC_FALSE;
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "layers_", "Two bonded layers under self-weight", nullptr);
-    PetscCall(PetscOptionsReal("-bottom_height", "Bottom layer height Hb (m)", nullptr, Hb_, &Hb_,
-                               nullptr));
+    PetscCall(PmpmOptionsReal("-bottom_height", "Bottom layer height Hb (m)", nullptr, Hb_, &Hb_,
+                              nullptr));
     PetscCall(
-        PetscOptionsReal("-top_height", "Top layer height Ht (m)", nullptr, Ht_, &Ht_, nullptr));
+        PmpmOptionsReal("-top_height", "Top layer height Ht (m)", nullptr, Ht_, &Ht_, nullptr));
     PetscCall(
-        PetscOptionsReal("-width", "Column width (m); default 4 cells", nullptr, W_, &W_, nullptr));
+        PmpmOptionsReal("-width", "Column width (m); default 4 cells", nullptr, W_, &W_, &w_set));
     PetscOptionsEnd();
+    PetscCheck(!w_set || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-layers_width must be > 0 m (got %g; default 4 cells)", W_);
     if (W_ <= 0) W_ = 4 * sim.set.h;
     PetscInt nb, nt, nW;
     PetscCall(CheckCells(sim.comm, "-layers_bottom_height", Hb_, sim.set.h, &nb));

@@ -32,6 +32,7 @@
 // = m L (the whole sheet slides at full friction), with end_clearance_cells (the pulled end's
 // distance from the right face, in cells) to show the sheet stayed clear of the roller's nodes.
 // pullout_history.csv has the friction force and the pulled end's u_x after every step.
+#include "pmpm/options.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
@@ -55,29 +56,29 @@ public:
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "pullout_", "Pull-out of a sheet between two stiff blocks",
                       nullptr);
-    PetscCall(PetscOptionsReal("-length", "Anchored length L of the sheet (m), whole cells",
-                               nullptr, L_, &L_, nullptr));
-    PetscCall(PetscOptionsReal("-force", "Pull-out force P on the sheet's right end (N/m), >= 0",
-                               nullptr, P_, &P_, nullptr));
-    PetscCall(PetscOptionsReal("-pressure",
-                               "Normal stress p on the sheet (Pa), > 0: a traction on the upper "
-                               "block's top face",
-                               nullptr, p_, &p_, nullptr));
-    PetscCall(PetscOptionsReal("-block_height",
-                               "Height H of each block (m); 2 H must be an odd number of cells "
-                               "(the sheet at a cell centre)",
-                               nullptr, H_, &H_, nullptr));
-    PetscCall(PetscOptionsReal("-margin",
-                               "Block length beyond each end of the sheet (m), whole cells, >= 2 "
-                               "cells",
-                               nullptr, margin_, &margin_, nullptr));
-    PetscCall(PetscOptionsReal("-offset",
-                               "Shift of the sheet along x against the grid (m, |dx| < h)", nullptr,
-                               off_, &off_, nullptr));
+    PetscCall(PmpmOptionsReal("-length", "Anchored length L of the sheet (m), whole cells", nullptr,
+                              L_, &L_, nullptr));
+    PetscCall(PmpmOptionsReal("-force", "Pull-out force P on the sheet's right end (N/m), >= 0",
+                              nullptr, P_, &P_, nullptr));
+    PetscCall(PmpmOptionsReal("-pressure",
+                              "Normal stress p on the sheet (Pa), > 0: a traction on the upper "
+                              "block's top face",
+                              nullptr, p_, &p_, nullptr));
+    PetscCall(PmpmOptionsReal("-block_height",
+                              "Height H of each block (m); 2 H must be an odd number of cells "
+                              "(the sheet at a cell centre)",
+                              nullptr, H_, &H_, nullptr));
+    PetscCall(PmpmOptionsReal("-margin",
+                              "Block length beyond each end of the sheet (m), whole cells, >= 2 "
+                              "cells",
+                              nullptr, margin_, &margin_, nullptr));
+    PetscCall(PmpmOptionsReal("-offset",
+                              "Shift of the sheet along x against the grid (m, |dx| < h)", nullptr,
+                              off_, &off_, nullptr));
     PetscOptionsEnd();
     PetscOptionsBegin(sim.comm, "membrane_", "The membrane", nullptr);
     PetscCall(
-        PetscOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
+        PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
     PetscOptionsEnd();
     const double h = sim.set.h;
     PetscCheck(P_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-pullout_force must be >= 0 (got %g)",

@@ -20,6 +20,7 @@
 // a surface, so its top is resolved to a cell. For displacements below a cell (the minimum of the
 // curve) that is the base itself. The curve depends on the door's rate as well as on the cell:
 // a faster door drops soil onto itself and reads more pressure (README, "Active trapdoor").
+#include "pmpm/options.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
 #include "pmpm/giroud.hpp"
@@ -95,27 +96,27 @@ class TrapdoorScene final : public Scene {
 public:
   PetscErrorCode setup(Simulation &sim) override {
     PetscInt n = 64;
-    PetscBool set = PETSC_FALSE;
+    PetscBool set = PETSC_FALSE, hset = PETSC_FALSE, wset = PETSC_FALSE;
     PetscFunctionBeginUser;
     disp_.assign(n, 0.0);
     PetscOptionsBegin(sim.comm, "trapdoor_", "Active trapdoor under a cohesionless soil layer",
                       nullptr);
-    PetscCall(PetscOptionsReal("-width", "Door width B (m), > 0; B/2 a whole number of cells",
-                               nullptr, B_, &B_, nullptr));
-    PetscCall(PetscOptionsReal("-height", "Soil height H (m), > 0, whole cells; default 2 B",
-                               nullptr, H_, &H_, nullptr));
-    PetscCall(PetscOptionsReal("-soil_width",
-                               "Soil half-width W from the door's centre line (m), >= B, whole "
-                               "cells; default B/2 + max(B, 1.5 H)",
-                               nullptr, W_, &W_, nullptr));
-    PetscCall(PetscOptionsRealArray("-displacements",
-                                    "Door displacement of each stage over B, increasing, in "
-                                    "(0, 0.5]",
-                                    nullptr, disp_.data(), &n, &set));
-    PetscCall(PetscOptionsReal("-rate",
-                               "Door displacement per step over the cell size, in (0, 0.01]: a "
-                               "stage lowers the door at this steady rate, then holds it",
-                               nullptr, rate_, &rate_, nullptr));
+    PetscCall(PmpmOptionsReal("-width", "Door width B (m), > 0; B/2 a whole number of cells",
+                              nullptr, B_, &B_, nullptr));
+    PetscCall(PmpmOptionsReal("-height", "Soil height H (m), > 0, whole cells; default 2 B",
+                              nullptr, H_, &H_, &hset));
+    PetscCall(PmpmOptionsReal("-soil_width",
+                              "Soil half-width W from the door's centre line (m), >= B, whole "
+                              "cells; default B/2 + max(B, 1.5 H)",
+                              nullptr, W_, &W_, &wset));
+    PetscCall(PmpmOptionsRealArray("-displacements",
+                                   "Door displacement of each stage over B, increasing, in "
+                                   "(0, 0.5]",
+                                   nullptr, disp_.data(), &n, &set));
+    PetscCall(PmpmOptionsReal("-rate",
+                              "Door displacement per step over the cell size, in (0, 0.01]: a "
+                              "stage lowers the door at this steady rate, then holds it",
+                              nullptr, rate_, &rate_, nullptr));
     PetscOptionsEnd();
     PetscCheck(set && n >= 1, sim.comm, PETSC_ERR_USER_INPUT,
                "-trapdoor_displacements is required: the door displacement of each stage over B");
@@ -129,6 +130,13 @@ public:
                B_);
     PetscCheck(rate_ > 0 && rate_ <= 0.01, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-trapdoor_rate must be in (0, 0.01] cells per step (got %g)", rate_);
+    // given, they must be > 0 (0 is not "the default")
+    PetscCheck(!hset || H_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-trapdoor_height must be > 0 m, whole cells (got %g; default 2 B)", H_);
+    PetscCheck(!wset || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-trapdoor_soil_width must be > 0 m, >= B, whole cells (got %g; default B/2 + "
+               "max(B, 1.5 H))",
+               W_);
     if (H_ <= 0) H_ = 2 * B_;
     if (W_ <= 0) W_ = 0.5 * B_ + std::max(B_, 1.5 * H_);
     PetscInt nb, nw, nh;

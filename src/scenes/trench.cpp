@@ -43,6 +43,7 @@
 //     arc(y) = (B + u_L + u_R)(1 + T / J), T = p B Omega(y), with (d) the simulated pull-in,
 //     (e) the closed-form pull-in u = T^2 / (2 m J) per side (rigid soil, full friction on both
 //     faces), (f) the same with the simulated mobilised shear, (g) (e) under the overburden.
+#include "pmpm/options.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/giroud.hpp"
 #include "pmpm/output.hpp"
@@ -159,32 +160,32 @@ public:
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "trench_", "Trench: a membrane over an open trench under a cover",
                       nullptr);
-    PetscCall(PetscOptionsReal("-width", "Trench width B (m)", nullptr, B_, &B_, nullptr));
+    PetscCall(PmpmOptionsReal("-width", "Trench width B (m)", nullptr, B_, &B_, nullptr));
     PetscCall(
-        PetscOptionsReal("-depth", "Trench depth D (m), < base height", nullptr, D_, &D_, nullptr));
-    PetscCall(PetscOptionsReal("-cover", "Cover thickness H (m)", nullptr, H_, &H_, nullptr));
-    PetscCall(PetscOptionsReal("-base_height", "Base layer height Hb (m), > trench depth", nullptr,
-                               Hb_, &Hb_, nullptr));
-    PetscCall(PetscOptionsReal("-anchorage", "Sheet length on the base beyond each edge (m)",
-                               nullptr, La_, &La_, nullptr));
-    PetscCall(PetscOptionsReal("-margin", "Base and cover beyond each end of the sheet (m)",
-                               nullptr, margin_, &margin_, nullptr));
-    PetscCall(PetscOptionsReal("-surface_offset",
-                               "Grid lines this fraction of a cell below the bodies' faces: 0.5 "
-                               "(the base surface and the sheet at mid-cell) or 0 (on a grid line)",
-                               nullptr, offset_, &offset_, nullptr));
+        PmpmOptionsReal("-depth", "Trench depth D (m), < base height", nullptr, D_, &D_, nullptr));
+    PetscCall(PmpmOptionsReal("-cover", "Cover thickness H (m)", nullptr, H_, &H_, nullptr));
+    PetscCall(PmpmOptionsReal("-base_height", "Base layer height Hb (m), > trench depth", nullptr,
+                              Hb_, &Hb_, nullptr));
+    PetscCall(PmpmOptionsReal("-anchorage", "Sheet length on the base beyond each edge (m)",
+                              nullptr, La_, &La_, nullptr));
+    PetscCall(PmpmOptionsReal("-margin", "Base and cover beyond each end of the sheet (m)", nullptr,
+                              margin_, &margin_, nullptr));
+    PetscCall(PmpmOptionsReal("-surface_offset",
+                              "Grid lines this fraction of a cell below the bodies' faces: 0.5 "
+                              "(the base surface and the sheet at mid-cell) or 0 (on a grid line)",
+                              nullptr, offset_, &offset_, nullptr));
     PetscCall(PetscOptionsBool("-pin_ends",
                                "Hold the sheet's far ends fixed (an anchor trench) instead of "
                                "leaving them free on the base",
                                nullptr, pin_, &pin_, nullptr));
-    PetscCall(PetscOptionsInt("-history_every",
-                              "Steps between rows of trench_history.csv (sag, edge tension, "
-                              "pull-in, pressures); 0: none",
-                              nullptr, every_, &every_, nullptr));
+    PetscCall(PmpmOptionsInt("-history_every",
+                             "Steps between rows of trench_history.csv (sag, edge tension, "
+                             "pull-in, pressures); 0: none",
+                             nullptr, every_, &every_, nullptr));
     PetscOptionsEnd();
     PetscOptionsBegin(sim.comm, "membrane_", "The membrane", nullptr);
     PetscCall(
-        PetscOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
+        PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
     PetscOptionsEnd();
     const double h = sim.set.h;
     PetscInt nB, nD, nH, nHb, nLa, nM;
@@ -225,10 +226,10 @@ public:
     // Terzaghi's phi: the cover's own friction angle when it has one
     PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-mat_cover_friction_angle", &phi_, nullptr));
     PetscOptionsBegin(sim.comm, "trench_", "Trench: closed forms", nullptr);
-    PetscCall(PetscOptionsReal("-terzaghi_phi",
-                               "Friction angle (deg) for Terzaghi's bracket (default: "
-                               "-mat_cover_friction_angle, else 30)",
-                               nullptr, phi_, &phi_, nullptr));
+    PetscCall(PmpmOptionsReal("-terzaghi_phi",
+                              "Friction angle (deg) for Terzaghi's bracket (default: "
+                              "-mat_cover_friction_angle, else 30)",
+                              nullptr, phi_, &phi_, nullptr));
     PetscOptionsEnd();
     PetscCheck(phi_ > 0 && phi_ < 90, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-trench_terzaghi_phi must be in (0, 90) degrees (got %g)", phi_);
