@@ -288,8 +288,15 @@ void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &p
   const double dt = prm.dt, pic = prm.pic;
   const int body = c.body * ND, above = (c.body + 1) * ND, below = (c.body - 1) * ND;
   const int slot = c.slot;
+  // Every point's frame, block and owner come from the step-start positions: moving a point in
+  // place turned its next neighbour's frame into a mix of old and new positions that depended on
+  // which neighbours this rank had moved, i.e. on the rank count (catenary, 3-4 against 1 rank:
+  // 2e-8 to 7e-8 of the span). The new positions are written after the loop.
+  std::vector<double> &xn = c.x_new;
+  xn = c.x;
   for (int i = 0; i < c.n; ++i) {
-    double *x = &c.x[i * DIM], *v = &c.v[i * DIM];
+    const double *x = &c.x[i * DIM];
+    double *v = &c.v[i * DIM];
     c.owned[i] = owned_by(grid, G, x);
     if (!c.owned[i]) {
       // off the grid: nobody owns it; the caller counts the owners
@@ -333,9 +340,10 @@ void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &p
     // contact pressure: the compressive normal impulse over the sheet length it acts on
     c.p_top[i] = len > 0 ? nt / (dt * len) : 0.0;
     c.p_bot[i] = len > 0 ? nbt / (dt * len) : 0.0;
-    x[0] += dt * vg[0];
-    x[1] += dt * vg[1];
+    xn[i * DIM] = x[0] + dt * vg[0];
+    xn[i * DIM + 1] = x[1] + dt * vg[1];
   }
+  c.x.swap(xn);
 }
 
 // Owner's values, zeros elsewhere: x, v, slips, pressures, contact stencil per point (+ 1

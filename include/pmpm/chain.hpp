@@ -91,7 +91,8 @@ struct Chain {
   std::vector<char> slack;
   // per point, accumulated from the grid: slip on each face (m), contact pressure (Pa)
   std::vector<double> slip_top, slip_bot, p_top, p_bot;
-  std::vector<char> owned; // this rank updates the point (scratch of g2p_chain)
+  std::vector<char> owned;   // this rank updates the point (scratch of g2p_chain)
+  std::vector<double> x_new; // the points' new positions (scratch of g2p_chain)
   // last step's totals: friction force on the chain along its tangent (N/m) and the reaction at
   // pinned ends (N/m)
   double friction_force = 0;
