@@ -2,6 +2,7 @@
 #include "pmpm/shape.hpp"
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace pmpm {
 
@@ -206,11 +207,70 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   PetscFunctionReturn(0);
 }
 
+namespace {
+// The segments' chord strains projected on the grid's nodes and back (-chain_strain_projection):
+// node I gets e_I = sum_k w_Ik l0_k e_k / sum_k w_Ik l0_k, segment k then sum_I w_Ik e_I, with
+// w_Ik the uGIMP weights of a block at the segment's midpoint along its chord (the points'
+// blocks, point_halfsize). The sheet's points move with the grid's velocity interpolated over
+// one-cell blocks, so their displacement is a quadratic spline of the nodes': its slope w' is
+// linear within a cell and w'^2 / 2 quadratic, which the axial part u' (linear) cannot cancel,
+// and a sheet that bends while hardly stretching (strain << w'^2 / 2) carries a chord strain
+// that swings within each cell by about (w'' h)^2 / 8 (membrane locking; Stolarski and
+// Belytschko 1982). The projection keeps what the grid resolves, as F-bar keeps a cell's
+// volume change: with T_k = J e_k the internal force sum_k T_k tau_k de_k/dx is the gradient of
+// the energy J/2 sum_k l0_k e_k (P e)_k, P the projection (symmetric in the l0-weighted sum).
+void project_strain(const Chain &c, std::vector<double> &e) {
+  GridView G;
+  G.h = c.grid_h;
+  for (int d = 0; d < DIM; ++d) {
+    G.origin[d] = c.grid_origin[d];
+    G.ncell[d] = c.grid_ncell[d];
+  }
+  constexpr int NS = UGIMPShape::NS;
+  const int ns = c.n - 1;
+  const long long row = c.grid_ncell[0] + 1;
+  std::vector<Weights<UGIMPShape>> W(ns);
+  std::unordered_map<long long, std::pair<double, double>> node;
+  node.reserve(static_cast<size_t>(4 * ns));
+  for (int k = 0; k < ns; ++k) {
+    const double *a = &c.x[k * DIM], *b = &c.x[(k + 1) * DIM];
+    const double xm[DIM] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+    const double l = std::hypot(b[0] - a[0], b[1] - a[1]);
+    const double tau[DIM] = {(b[0] - a[0]) / l, (b[1] - a[1]) / l};
+    double lp[DIM];
+    point_halfsize(G, xm, tau, lp);
+    weights<UGIMPShape>(xm, lp, G.origin, G.h, W[k]);
+    for (int q = 0; q < NS * NS; ++q) {
+      const double w = W[k].w[q];
+      if (w == 0.0) continue;
+      auto &s = node[(W[k].base[1] + q / NS) * row + W[k].base[0] + q % NS];
+      s.first += w * c.l0[k] * e[k];
+      s.second += w * c.l0[k];
+    }
+  }
+  for (int k = 0; k < ns; ++k) {
+    double ek = 0;
+    for (int q = 0; q < NS * NS; ++q) {
+      const double w = W[k].w[q];
+      if (w == 0.0) continue;
+      const auto &s = node.at((W[k].base[1] + q / NS) * row + W[k].base[0] + q % NS);
+      ek += w * s.first / s.second;
+    }
+    e[k] = ek;
+  }
+}
+} // namespace
+
 void chain_update_tension(Chain &c) {
+  c.eps_chord.resize(c.n - 1);
   for (int k = 0; k + 1 < c.n; ++k) {
     const double dx = c.x[(k + 1) * DIM] - c.x[k * DIM],
                  dy = c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1];
-    c.eps[k] = std::hypot(dx, dy) / c.l0[k] - 1.0;
+    c.eps_chord[k] = std::hypot(dx, dy) / c.l0[k] - 1.0;
+  }
+  c.eps = c.eps_chord;
+  if (c.strain_projection) project_strain(c, c.eps);
+  for (int k = 0; k + 1 < c.n; ++k) {
     bool slack = false;
     c.T[k] = c.law.tension(c.eps[k], c.eps_p[k], c.alpha[k], slack);
     c.slack[k] = slack;

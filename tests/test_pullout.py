@@ -1,7 +1,7 @@
 """Pull-out of an anchored sheet between two stiff blocks (FIELD.md 3.2): the chain's Coulomb
 friction on both faces against the rigid-plastic closed form (closed_forms.pullout).
 
-usage: test_pullout.py EXE NP OUTDIR
+usage: test_pullout.py EXE NP OUTDIR [pmpm options for every run]
 options/pullout.opts: L = 1 m anchored, p = 20 kPa, J = E t = 1e6 N/m (uniaxial), blocks
 E = 1e10 Pa (near-rigid, weightless), h = 0.02 m, P and p ramped together over 1000 steps,
 kinetic damping. x is measured from the pulled point's initial position (the sheet's right end,
@@ -48,12 +48,13 @@ from closed_forms import pullout
 from pmpmtest import Checks, run, summary
 
 exe, np_, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
-c = Checks(f"pullout_np{np_}")
+extra_all = sys.argv[4:]
+c = Checks(f"pullout_np{np_}" + (" " + " ".join(extra_all) if extra_all else ""))
 
 
 def case(name, *extra):
     d = f"{out}/{name}"
-    run(exe, np_, ["-options_file", "options/pullout.opts"] + list(extra), d)
+    run(exe, np_, ["-options_file", "options/pullout.opts"] + list(extra) + extra_all, d)
     prof = np.genfromtxt(f"{d}/chain_membrane.csv", delimiter=",", names=True)
     return summary(d), prof
 
