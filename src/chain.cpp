@@ -380,23 +380,27 @@ void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &p
           vg[d] += w * nc[GridDof::P + d];
           ag[d] += w * nc[GridDof::F + d];
         }
-        // the neighbouring bodies' velocity where they are, mass-weighted (slip)
-        const double wa = w * na[GridDof::M], wb = w * nb[GridDof::M];
-        for (int d = 0; d < DIM; ++d) {
-          va[d] += wa * na[GridDof::P + d];
-          vb[d] += wb * nb[GridDof::P + d];
+        // slip: the sheet's velocity relative to each neighbouring body at the same nodes, the
+        // nodes of the point's stencil where that body is (a mass-weighted mean of the body's
+        // velocity against the sheet's own mean compared node rows a cell apart: a sheet bonded
+        // on both faces slipped 5.7, 3.0, 1.4 mm at h = 0.5, 0.25, 0.125 m, the shear over half
+        // a cell, on an elastic degrading cover)
+        if (na[GridDof::M] > 0) {
+          for (int d = 0; d < DIM; ++d) va[d] += w * (nc[GridDof::P + d] - na[GridDof::P + d]);
+          ma += w;
         }
-        ma += wa;
-        mb += wb;
+        if (nb[GridDof::M] > 0) {
+          for (int d = 0; d < DIM; ++d) vb[d] += w * (nc[GridDof::P + d] - nb[GridDof::P + d]);
+          mb += w;
+        }
         nt += w * std::fmax(ns[ChainDof::NTOP], 0.0);
         nbt += w * std::fmax(ns[ChainDof::NBOT], 0.0);
         len += w * ns[ChainDof::LEN];
       }
 
     for (int d = 0; d < DIM; ++d) v[d] = (1.0 - pic) * (v[d] + dt * ag[d]) + pic * vg[d];
-    const double vt = vg[0] * tau[0] + vg[1] * tau[1];
-    if (ma > 0) c.slip_top[i] += dt * (vt - (va[0] * tau[0] + va[1] * tau[1]) / ma);
-    if (mb > 0) c.slip_bot[i] += dt * (vt - (vb[0] * tau[0] + vb[1] * tau[1]) / mb);
+    if (ma > 0) c.slip_top[i] += dt * (va[0] * tau[0] + va[1] * tau[1]) / ma;
+    if (mb > 0) c.slip_bot[i] += dt * (vb[0] * tau[0] + vb[1] * tau[1]) / mb;
     // contact pressure: the compressive normal impulse over the sheet length it acts on
     c.p_top[i] = len > 0 ? nt / (dt * len) : 0.0;
     c.p_bot[i] = len > 0 ? nbt / (dt * len) : 0.0;

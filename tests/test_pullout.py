@@ -78,6 +78,16 @@ def below(name, mu_t, mu_b):
     for face in ("top", "bottom"):
         c.le(f"{what}: |contact pressure ({face}) / p - 1|",
              abs(r[f"contact_pressure_{face}"] / p - 1), 0.02)
+    # slip: the blocks are at rest, so each face's slip is the sheet's displacement, the closed
+    # form's u(x) = (P - m x)^2 / (2 m J); the sheet's own u_x meets it within 3 % at its end,
+    # and the profile carries the force's entry smear as the tension does (bound as for T)
+    u = ex["displacement"](x)
+    end = int(np.argmin(x))
+    for face in ("top", "bottom"):
+        sl = prof[f"slip_{face}"] * np.sign(prof["ux"][end])
+        c.le(f"{what}: |slip ({face}) at the pulled end / u0 - 1|", abs(sl[end] / ex["u0"] - 1), 0.03)
+        c.le(f"{what}: RMS |slip ({face}) - u(x)| / u0", np.sqrt(np.mean((sl - u) ** 2)) / ex["u0"],
+             0.02)
     beyond = x > ex["x_a"] + 2 * h
     c.le(f"{what}: max |u_x| beyond x_a + 2 cells / u0",
          np.max(np.abs(prof["ux"][beyond])) / ex["u0"], 0.02)
