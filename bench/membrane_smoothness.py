@@ -5,6 +5,7 @@
     /usr/bin/python3 bench/membrane_smoothness.py                 # every example, 2 ranks
     /usr/bin/python3 bench/membrane_smoothness.py --only void,trench --np 1
     /usr/bin/python3 bench/membrane_smoothness.py --quick         # the 1 m test void only
+    /usr/bin/python3 bench/membrane_smoothness.py --only degradation --meshes 1   # coarsest only
 
 For each run the segment strains e_k come from chain_<name>.csv (its point strain is the mean of
 the two adjacent segments; the first point's is its segment's, so the segments follow exactly).
@@ -12,7 +13,7 @@ The oscillation index is max_k |e_k - (e_{k-1} + e_{k+1}) / 2| / max_k e_k over 
 segments (the two end segments excluded); the peak is the largest segment strain (no gauge).
 The table gives per example, mesh and variant: steps, wall time, whether every stage converged,
 the segment peak and its x, the index, and the peak's change from the next coarser mesh. Writes
-bench/out/membrane_smoothness/{table.md,results.csv}.
+bench/out/membrane_smoothness/{table,results}_<examples>.{md,csv}.
 """
 import argparse
 import csv
@@ -60,6 +61,7 @@ def main():
     ap.add_argument("--only", default="")
     ap.add_argument("--np", type=int, default=2)
     ap.add_argument("--variants", default="chord,projected")
+    ap.add_argument("--meshes", type=int, default=3, help="the first N meshes only (coarse first)")
     ap.add_argument("extra", nargs="*", help="pmpm options for every run (e.g. -max_steps 5000)")
     a = ap.parse_args()
     names = ["void"] if a.quick else (a.only.split(",") if a.only else list(EXAMPLES))
@@ -71,6 +73,7 @@ def main():
     print("\n".join(lines), flush=True)
     for n in names:
         opts, hs, more = EXAMPLES[n]
+        hs = hs[:a.meshes]
         for v in a.variants.split(","):
             prev = None
             for h in hs:
@@ -93,8 +96,9 @@ def main():
                 print(lines[-1], flush=True)
                 rows.append([n, v, h, s.get("steps", ""), conv, e[k], xm[k], osc])
                 prev = e[k]
-    (OUT / "table.md").write_text("\n".join(lines) + "\n")
-    with open(OUT / "results.csv", "w", newline="") as f:
+    tag = "_".join(names)
+    (OUT / f"table_{tag}.md").write_text("\n".join(lines) + "\n")
+    with open(OUT / f"results_{tag}.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["example", "variant", "h", "steps", "converged", "segment_peak", "peak_x",
                     "oscillation_index"])
