@@ -15,6 +15,17 @@ The table gives per example, mesh and variant: steps, wall time, whether every s
 the segment peak and its x, the index, and the peak's change from the next coarser mesh. Writes
 bench/out/membrane_smoothness/{table,results}_<examples>.{md,csv}.
 """
+# Measured (this 2-core machine, shared; 1 rank unless said; segment peak %, index %):
+#   test void (tests/cover_void.opts), h = 0.5 / 0.25 / 0.125 m:
+#     chord      0.81 / 1.18 / 1.55, index 86 / 50 / 55
+#     projected  0.43 / 0.67 / 0.80, index 3.5 / 1.7 / 1.3 (peak at the finest two 18 % apart)
+#   trench (options/trench.opts, its 8000 steps, not at -tol 1e-4), h = 0.25 / 0.125 / 0.0625 m:
+#     chord      6.35 / 6.14 / 5.47, index 34 / 39 / 50
+#     projected  4.91 / 4.65 / 4.60, index 2.5 / 3.6 / 1.7 (the largest at the support edges)
+#   degradation (options/cover_degradation.opts), h = 1 / 0.5 m:
+#     chord      8.37 / 8.28, index 2.9 / 7.0;  projected 8.26 / 8.24, index 1.1 / 1.7
+#   sinkhole (options/cover_sinkhole.opts, 2 ranks), h = 0.5 m only (17 min a run here):
+#     chord 1.86, index 23.8;  projected 1.50, index 2.5
 import argparse
 import csv
 import glob
