@@ -622,6 +622,9 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver &ns) {
                "add -chain_%s_interface bonded, or for slip and separation%s",
                c.name.c_str(), FaceTypeNames[(int)c.top.type], FaceTypeNames[(int)c.bottom.type],
                c.name.c_str(), c.name.c_str(), fix);
+  for (const Chain &c : sim.chains)
+    PetscCheck(!c.strain_projection, sim.comm, PETSC_ERR_SUP,
+               "-solver newton does not support -chain_strain_projection yet%s", fix);
   // without chains -interface_type is the colour-1 body's interface
   PetscCheck(!sim.chains.empty() || sim.iface.type == InterfaceType::Bonded, sim.comm,
              PETSC_ERR_SUP,

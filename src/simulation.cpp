@@ -522,6 +522,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   // chains follow -inertia_scaling unless told otherwise: a sheet given the continuum's wave
   // speed is heavy and nearly weightless, which relaxation does not mind but which floats off
   // its support in dynamics (incline: 98 of 114 contact nodes separated by step 100)
+  PetscBool strain_projection = PETSC_FALSE;
   PetscBool chain_scaling = sim.set.inertia == InertiaScaling::WaveSpeed ? PETSC_TRUE : PETSC_FALSE;
   PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
   PetscCall(PetscOptionsBool("-chain_inertia_scaling",
@@ -530,6 +531,11 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
                              "materials (the load is unchanged); default: on under "
                              "-inertia_scaling wave_speed",
                              nullptr, chain_scaling, &chain_scaling, nullptr));
+  PetscCall(PetscOptionsBool("-chain_strain_projection",
+                             "Each chain segment's strain is the projection of the chord strains "
+                             "on the grid's nodes (removes the cell-period strain a sheet bending "
+                             "on the grid's interpolation carries; relaxation only)",
+                             nullptr, strain_projection, &strain_projection, nullptr));
   PetscCall(PmpmOptionsReal("-chain_tail_share",
                             "A sheet with less than this share of a node's mass and no body on "
                             "one side of it there moves with the bodies at the node, 0 <= s < 0.5",
@@ -560,6 +566,12 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
     PetscCall(ChainCreate(sim.comm, sim.chain_specs[k], sim.chain_spacing * sim.set.h, c));
     // inertia: the sheet's axial wave no faster than the continuum's (its load is unchanged)
     if (chain_scaling && cmax > 0) c.line_mass = c.law.J / (cmax * cmax);
+    c.strain_projection = strain_projection;
+    c.grid_h = sim.set.h;
+    for (int d = 0; d < DIM; ++d) {
+      c.grid_origin[d] = sim.origin[d];
+      c.grid_ncell[d] = sim.ncell[d];
+    }
     chain_update_tension(c);
   }
   sim.contact.tail_share = sim.iface.tail_share;

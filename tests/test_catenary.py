@@ -1,6 +1,6 @@
 """The elastic catenary (FIELD.md 3.1): one membrane chain alone, pinned at both ends.
 
-usage: test_catenary.py EXE NP OUTDIR
+usage: test_catenary.py EXE NP OUTDIR [pmpm options for every run]
 Checked against the closed form computed here, independently of the scene (closed_forms.py):
 sag, mid-span and support strain, mid-span tension within 1 % (the issue's bound), for
   - FIELD.md's check case (l = L0 = 10 m, w = 100 N/m^2, J = 1e5 N/m, strain 1.6 %) at
@@ -21,12 +21,13 @@ import closed_forms as cf
 from pmpmtest import Checks, run, summary
 
 exe, np, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
-c = Checks(f"catenary_np{np}")
+extra_all = sys.argv[4:]
+c = Checks(f"catenary_np{np}" + (" " + " ".join(extra_all) if extra_all else ""))
 
 
 def case(name, *extra):
     d = f"{out}/{name}"
-    run(exe, np, ["-options_file", "options/catenary.opts"] + list(extra), d)
+    run(exe, np, ["-options_file", "options/catenary.opts"] + list(extra) + extra_all, d)
     s = summary(d)
     c.check(f"{name}: converged", s["converged"] is True, f"(ratio {s['unbalanced_force_ratio']:.2e})")
     return s

@@ -10,7 +10,7 @@ heights and loads are the paper's; the soft zone lies 1 mm below the sheet. Chec
   - the interface on both faces (mu = 0.3, options/landfill_friction.opts): contact and the paper's
     form agree (1e-3 relative; measured 9e-6 in settlement, 1e-6 in peak strain), the interface
     stays pressed (normal impulse in tension < 1e-6 of the compressive), and the sheet slips on
-    its lower face several times more than bonded (measured 8x; bound 3x);
+    its lower face (slip / settlement >= 1e-3), where bonded it does not (0 to 1e-12);
   - tension-only: the sheet is slack where the bonded one is in compression (slack_length > 0,
     no negative tension in the profile), and the settlement is unchanged (< 0.1 %).
 The peak strain differs from the resolved membrane's by design (0.98 % against 1.76 %): the
@@ -53,8 +53,13 @@ for k in ("settlement_centre", "peak_axial_strain"):
 ci = con["contact"]
 c.le("mu = 0.3, contact: tensile / compressive normal impulse",
      ci["normal_impulse_tension"] / ci["normal_impulse_compression"], 1e-6)
-c.ge("mu = 0.3: slip on the lower face / bonded",
-     con["chains"]["membrane"]["max_slip_bottom"] / bon["chains"]["membrane"]["max_slip_bottom"], 3)
+# slip is the sheet's motion relative to each body at the same nodes: 0 where bonded (exactly:
+# a bonded node's bodies share one velocity), and a share of the settlement under friction
+for face in ("top", "bottom"):
+    c.le(f"bonded: max slip ({face}) / settlement",
+         bon["chains"]["membrane"][f"max_slip_{face}"] / rb["settlement_centre"], 1e-12)
+c.ge("mu = 0.3: slip on the lower face / settlement",
+     con["chains"]["membrane"]["max_slip_bottom"] / rc["settlement_centre"], 1e-3)
 
 ton = case("chain_tension_only", "options/landfill.opts", "-landfill_membrane_chain",
            "-interface_type", "bonded", "-mat_membrane_law", "tension_only")

@@ -1,7 +1,7 @@
 """Pull-out of an anchored sheet between two stiff blocks (FIELD.md 3.2): the chain's Coulomb
 friction on both faces against the rigid-plastic closed form (closed_forms.pullout).
 
-usage: test_pullout.py EXE NP OUTDIR
+usage: test_pullout.py EXE NP OUTDIR [pmpm options for every run]
 options/pullout.opts: L = 1 m anchored, p = 20 kPa, J = E t = 1e6 N/m (uniaxial), blocks
 E = 1e10 Pa (near-rigid, weightless), h = 0.02 m, P and p ramped together over 1000 steps,
 kinetic damping. x is measured from the pulled point's initial position (the sheet's right end,
@@ -48,12 +48,14 @@ from closed_forms import pullout
 from pmpmtest import Checks, run, summary
 
 exe, np_, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
-c = Checks(f"pullout_np{np_}")
+extra_all = sys.argv[4:]
+c = Checks(f"pullout_np{np_}" + (" " + " ".join(extra_all) if extra_all else ""))
 
 
 def case(name, *extra, capped=False):
     d = f"{out}/{name}"
-    run(exe, np_, ["-options_file", "options/pullout.opts"] + list(extra), d, capped=capped)
+    run(exe, np_, ["-options_file", "options/pullout.opts"] + list(extra) + extra_all, d,
+        capped=capped)
     prof = np.genfromtxt(f"{d}/chain_membrane.csv", delimiter=",", names=True)
     return summary(d), prof
 
@@ -77,6 +79,16 @@ def below(name, mu_t, mu_b):
     for face in ("top", "bottom"):
         c.le(f"{what}: |contact pressure ({face}) / p - 1|",
              abs(r[f"contact_pressure_{face}"] / p - 1), 0.02)
+    # slip: the blocks are at rest, so each face's slip is the sheet's displacement, the closed
+    # form's u(x) = (P - m x)^2 / (2 m J); the sheet's own u_x meets it within 3 % at its end,
+    # and the profile carries the force's entry smear as the tension does (bound as for T)
+    u = ex["displacement"](x)
+    end = int(np.argmin(x))
+    for face in ("top", "bottom"):
+        sl = prof[f"slip_{face}"] * np.sign(prof["ux"][end])
+        c.le(f"{what}: |slip ({face}) at the pulled end / u0 - 1|", abs(sl[end] / ex["u0"] - 1), 0.03)
+        c.le(f"{what}: RMS |slip ({face}) - u(x)| / u0", np.sqrt(np.mean((sl - u) ** 2)) / ex["u0"],
+             0.02)
     beyond = x > ex["x_a"] + 2 * h
     c.le(f"{what}: max |u_x| beyond x_a + 2 cells / u0",
          np.max(np.abs(prof["ux"][beyond])) / ex["u0"], 0.02)

@@ -88,10 +88,18 @@ struct Chain {
   std::vector<double> f;                              // internal force (DIM per point)
   // segments
   std::vector<double> l0, eps, eps_p, alpha, T;
+  // -chain_strain_projection: each segment's strain is the grid's projection of the chord
+  // strains (chain.cpp, chain_update_tension); eps_chord keeps the chord strains. The grid's
+  // geometry is kept for it (every rank projects all segments, as it holds all points).
+  bool strain_projection = false;
+  double grid_h = 0, grid_origin[DIM] = {0, 0};
+  PetscInt grid_ncell[DIM] = {0, 0};
+  std::vector<double> eps_chord;
   std::vector<char> slack;
   // per point, accumulated from the grid: slip on each face (m), contact pressure (Pa)
   std::vector<double> slip_top, slip_bot, p_top, p_bot;
-  std::vector<char> owned; // this rank updates the point (scratch of g2p_chain)
+  std::vector<char> owned;   // this rank updates the point (scratch of g2p_chain)
+  std::vector<double> x_new; // the points' new positions (scratch of g2p_chain)
   // last step's totals: friction force on the chain along its tangent (N/m) and the reaction at
   // pinned ends (N/m)
   double friction_force = 0;

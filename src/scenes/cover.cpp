@@ -84,8 +84,11 @@ SheetPeak sheet_peak(const Chain &c, double gauge) {
   const int ns = c.n - 1;
   std::vector<double> s0(c.n, 0.0), s(c.n, 0.0), tl(c.n, 0.0); // cumulative laid, current, T l0
   for (int j = 0; j < ns; ++j) {
-    const double l =
-        std::hypot(c.x[(j + 1) * DIM] - c.x[j * DIM], c.x[(j + 1) * DIM + 1] - c.x[j * DIM + 1]);
+    // under -chain_strain_projection the sheet's strain is the projected one (its tension comes
+    // from it), not the chord's stretch: the window's mean of it, as for the tension
+    const double l = c.strain_projection ? c.l0[j] * (1.0 + c.eps[j])
+                                         : std::hypot(c.x[(j + 1) * DIM] - c.x[j * DIM],
+                                                      c.x[(j + 1) * DIM + 1] - c.x[j * DIM + 1]);
     s0[j + 1] = s0[j] + c.l0[j];
     s[j + 1] = s[j] + l;
     tl[j + 1] = tl[j] + c.T[j] * c.l0[j];
