@@ -204,12 +204,18 @@ PetscErrorCode Relax(Simulation &sim) {
                           ShapeKindNames[(int)s.shape], run.dt, s.cfl, s.tol));
 
   FILE *hist = nullptr; // -relax_history, rank 0: the first stage starts the file
-  if (!s.relax_history.empty() && sim.rank == 0) {
-    const bool fresh = first && !resume;
-    hist = fopen(s.relax_history.c_str(), fresh ? "w" : "a");
-    PetscCheck(hist, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "-relax_history: cannot write %s",
+  const bool fresh = first && !resume;
+  if (!s.relax_history.empty()) {
+    int ok = 1;
+    if (sim.rank == 0) {
+      hist = fopen(s.relax_history.c_str(), fresh ? "w" : "a");
+      ok = hist != nullptr;
+    }
+    PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, sim.comm));
+    PetscCheck(ok, sim.comm, PETSC_ERR_FILE_OPEN, "-relax_history: cannot write %s",
                s.relax_history.c_str());
-    if (fresh) fprintf(hist, "stage,step,ratio,kinetic,kinetic_resets,max_unbalanced,x,y\n");
+    if (hist && fresh)
+      fprintf(hist, "stage,step,ratio,kinetic,kinetic_resets,max_unbalanced,x,y\n");
   }
   PetscInt k = resume ? run.stage_step + 1 : 1;
   PetscInt step_last = k - 1;
