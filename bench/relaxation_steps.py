@@ -17,7 +17,7 @@ Cases (each as shipped but for the cell size):
   slope     options/cover_slope.opts at h = 0.25 m, 2 ranks (-tol 1e-3, cap 30,000 per stage)
 Per run: the steps of every stage, whether it reached -tol, the final ratio, wall time, and the
 answers the tests read; the last column is each answer's relative change from the shipped (kinetic) run.
-Every run writes its ratio history (-relax_history) to bench/out/relaxation_steps/<run>/history.csv.
+Every run writes its ratio history (-relax_history) to bench/out/relaxation_steps/<run>_history.csv.
 """
 import argparse
 import csv
@@ -53,8 +53,10 @@ CASES = {
 def run(case, scheme):
     np_, args, keys = CASES[case]
     out = OUT / f"{case}_{scheme}"
+    # beside the run's directory: pmpm opens the history before it makes its output directory
+    hist_path = OUT / f"{case}_{scheme}_history.csv"
     s = run_pmpm(ROOT / "build" / "pmpm", np_,
-                 args + SCHEMES[scheme] + ["-relax_history", out / "history.csv"], out,
+                 args + SCHEMES[scheme] + ["-relax_history", hist_path], out,
                  timeout=7200)
     if s is None:
         return None
@@ -68,7 +70,7 @@ def run(case, scheme):
         answers = {k: float(s["results"][k]) for k in keys}
         stages = [(int(s["steps"]), bool(s["converged"]), None)]
     ratio = None
-    with open(out / "history.csv") as f:
+    with open(hist_path) as f:
         hist = list(csv.DictReader(f))
     if hist:
         ratio = float(hist[-1]["ratio"])
