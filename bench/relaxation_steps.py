@@ -94,8 +94,8 @@ def main():
              "indicative only). Steps per stage (`*`: stopped at the step cap, not converged); "
              "answers the tests read; change: the largest relative change of those answers from "
              "the shipped (kinetic) run.", "",
-             "| case | damping | steps per stage | total steps | all converged | final ratio | "
-             "wall (s) | answers | change from kinetic |",
+             "| case | scheme | steps per stage | total steps | all converged | final ratio | "
+             "wall (s) | answers | change from shipped |",
              "|---|---|---|---|---|---|---|---|---|"]
     for case in cases:
         base = None
