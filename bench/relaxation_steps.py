@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Relaxation that reaches its tolerance: steps to -tol as shipped (kinetic damping, chain points
 every quarter cell) and with one chain point per cell (-chain_spacing 1), on the three cases that
-stalled or crept; FIRE (-damping fire) and -chain_pic 0 on request (--schemes).
+stalled or crept; -chain_pic 0 on request (--schemes).
 
     /usr/bin/python3 bench/relaxation_steps.py              # ~1 h on 2 cores (the slope is most
                                                             # of it); rewrites the "Relaxation
@@ -31,8 +31,8 @@ OUT = ROOT / "bench" / "out" / "relaxation_steps"
 MARK_BEGIN, MARK_END = "<!-- relaxation_steps.py begin -->", "<!-- relaxation_steps.py end -->"
 
 # "kinetic" is the default (the before); "spacing1" one chain point per cell (the after: the
-# stalls are the chains' points sharing a cell, not the damping); "fire" and "chainpic0" the
-# damping-side alternatives, measured on the catenary
+# stalls are the chains' points sharing a cell, not the damping); "chainpic0" a damping-side
+# alternative; "fire" is refused with chains (all three cases have one) and fails there
 SCHEMES = {"kinetic": ["-damping", "kinetic"], "spacing1": ["-chain_spacing", 1],
            "fire": ["-damping", "fire"], "chainpic0": ["-chain_pic", 0]}
 

@@ -185,6 +185,12 @@ PetscErrorCode Relax(Simulation &sim) {
   const double c0 = run.c0;
   const bool kinetic = s.damping == Damping::Kinetic || s.damping == Damping::Both;
   const bool fire = s.damping == Damping::Fire;
+  // FIRE's mixing turns each body's nodal velocity toward its own force, which the contact then
+  // undoes: on the friction landfill (chain, mu = 0.3, h = 0.5 mm) it did not converge in
+  // 100,000 steps and moved the settlement by 11 % and the peak strain by 86 %
+  PetscCheck(!fire || (sim.chains.empty() && !sim.iface_grid.active), sim.comm, PETSC_ERR_SUP,
+             "-damping fire is not supported with membrane chains or an interface (it moved the "
+             "friction landfill's answers); use -damping kinetic");
   // a resumed stage counts the seconds it ran before the checkpoint
   const double t_start = MPI_Wtime() - (resume ? run.stage_seconds : 0.0);
   double t_last = MPI_Wtime();
