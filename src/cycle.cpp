@@ -96,6 +96,12 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
                          : 0.0;
   for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.face[f];
   gp.prescribed = &sim.prescribed;
+  if (sim.set.damping == Damping::Fire && !sim.set.dynamic) {
+    const RunState &r = sim.run;
+    gp.fire = true;
+    gp.fire_mix = r.fire_mix;
+    gp.fire_scale = r.fire_f2m > 0 ? std::sqrt(r.fire_mv2 / r.fire_f2m) : 0.0;
+  }
   PetscCall(GridGetGlobal(g, G));
   grid_update(G, gp, rep.grid);
   PetscCall(PetscLogEventEnd(ev_grid, 0, 0, 0, 0));
@@ -196,8 +202,10 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     PetscCall(GridGetLocal(g, false, G));
     std::vector<double> &buf = sim.chain_buf, part;
     buf.clear();
+    G2PParams pc = pp; // the points' own PIC fraction (-chain_pic)
+    pc.pic = sim.set.chain_pic;
     for (Chain &c : sim.chains) {
-      g2p_chain(c, G, g, pp);
+      g2p_chain(c, G, g, pc);
       chain_pack(c, part);
       buf.insert(buf.end(), part.begin(), part.end());
     }
@@ -376,13 +384,28 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &re
   for (int d = 0; d < DIM; ++d) sim.run.local_unbalanced_at[d] = rep.grid.max_at[d];
   double mx[4] = {rep.grid.max_unbalanced, rep.g2p.max_c, rep.g2p.max_v,
                   static_cast<double>(rep.g2p.bad > 0 ? sim.rank + 1 : 0)};
-  double sm[10] = {rep.grid.sum_ext,          rep.grid.n_ext,
-                   rep.g2p.kinetic,           static_cast<double>(rep.g2p.left_rank),
-                   rep.iface.contact_nodes,   rep.iface.slip_nodes,
-                   rep.iface.compression,     rep.iface.tension,
-                   rep.grid.support_force[0], rep.grid.support_force[1]};
+  double sm[13] = {rep.grid.sum_ext,
+                   rep.grid.n_ext,
+                   rep.g2p.kinetic,
+                   static_cast<double>(rep.g2p.left_rank),
+                   rep.iface.contact_nodes,
+                   rep.iface.slip_nodes,
+                   rep.iface.compression,
+                   rep.iface.tension,
+                   rep.grid.support_force[0],
+                   rep.grid.support_force[1],
+                   rep.grid.power,
+                   rep.grid.mv2,
+                   rep.grid.f2m};
+  // FIRE's sums ride along only when asked for (the other runs reduce what they always did)
+  const int nsm = sim.set.damping == Damping::Fire ? 13 : 10;
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, mx, 4, MPI_DOUBLE, MPI_MAX, sim.comm));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, 10, MPI_DOUBLE, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm, nsm, MPI_DOUBLE, MPI_SUM, sim.comm));
+  if (nsm == 13) {
+    rep.grid.power = sm[10];
+    rep.grid.mv2 = sm[11];
+    rep.grid.f2m = sm[12];
+  }
   for (int d = 0; d < DIM; ++d) rep.grid.support_force[d] = sim.support_force[d] = sm[8 + d];
   rep.iface.contact_nodes = sm[4];
   rep.iface.slip_nodes = sm[5];

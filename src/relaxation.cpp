@@ -128,6 +128,24 @@ PetscErrorCode FastestParticle(Simulation &sim, double info[4]) {
   PetscFunctionReturn(0);
 }
 
+// One -relax_history row: the node of the largest unbalanced force over the ranks (collective).
+PetscErrorCode HistoryRow(Simulation &sim, FILE *f, PetscInt k) {
+  const RunState &run = sim.run;
+  struct {
+    double v;
+    int rank;
+  } loc = {run.local_unbalanced, sim.rank}, glob;
+  double at[DIM] = {run.local_unbalanced_at[0], run.local_unbalanced_at[1]};
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
+  PetscCallMPI(MPI_Bcast(at, DIM, MPI_DOUBLE, glob.rank, sim.comm));
+  if (f)
+    fprintf(f, "%d,%" PetscInt_FMT ",%.6e,%.6e,%" PetscInt_FMT ",%.6e,%.6g,%.6g\n", (int)sim.stage,
+            k, run.ratio, run.kinetic, run.kinetic_resets, glob.v, at[0], at[1]);
+  if (f) fflush(f); // readable while the run goes on
+  PetscFunctionReturn(0);
+}
+
 void FormatSeconds(double s, char *buf, size_t n) {
   if (!std::isfinite(s) || s < 0)
     snprintf(buf, n, "?");
@@ -159,10 +177,20 @@ PetscErrorCode Relax(Simulation &sim) {
     run.kinetic_prev = 0;
     run.converged = false;
     run.ke_window = -1; // kinetic energy 100 steps ago, for the growth test
+    run.fire_mix = s.fire_alpha;
+    run.fire_steps = 0;
+    run.fire_mv2 = run.fire_f2m = 0;
     PetscCall(EnergyBudgetInit(sim));
   }
   const double c0 = run.c0;
   const bool kinetic = s.damping == Damping::Kinetic || s.damping == Damping::Both;
+  const bool fire = s.damping == Damping::Fire;
+  // FIRE's mixing turns each body's nodal velocity toward its own force, which the contact then
+  // undoes: on the friction landfill (chain, mu = 0.3, h = 0.5 mm) it did not converge in
+  // 100,000 steps and moved the settlement by 11 % and the peak strain by 86 %
+  PetscCheck(!fire || (sim.chains.empty() && !sim.iface_grid.active), sim.comm, PETSC_ERR_SUP,
+             "-damping fire is not supported with membrane chains or an interface (it moved the "
+             "friction landfill's answers); use -damping kinetic");
   // a resumed stage counts the seconds it ran before the checkpoint
   const double t_start = MPI_Wtime() - (resume ? run.stage_seconds : 0.0);
   double t_last = MPI_Wtime();
@@ -181,6 +209,20 @@ PetscErrorCode Relax(Simulation &sim) {
                           s.scene.c_str(), sim.ncell[0], sim.ncell[1], s.h,
                           ShapeKindNames[(int)s.shape], run.dt, s.cfl, s.tol));
 
+  FILE *hist = nullptr; // -relax_history, rank 0: the first stage starts the file
+  const bool fresh = first && !resume;
+  if (!s.relax_history.empty()) {
+    int ok = 1;
+    if (sim.rank == 0) {
+      hist = fopen(s.relax_history.c_str(), fresh ? "w" : "a");
+      ok = hist != nullptr;
+    }
+    PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, sim.comm));
+    PetscCheck(ok, sim.comm, PETSC_ERR_FILE_OPEN, "-relax_history: cannot write %s",
+               s.relax_history.c_str());
+    if (hist && fresh)
+      fprintf(hist, "stage,step,ratio,kinetic,kinetic_resets,max_unbalanced,x,y\n");
+  }
   PetscInt k = resume ? run.stage_step + 1 : 1;
   PetscInt step_last = k - 1;
   for (; k <= s.max_steps; ++k) {
@@ -258,6 +300,25 @@ PetscErrorCode Relax(Simulation &sim) {
                "(now %g; 0.5 is safe for both shapes) or raise -damping_alpha.%s",
                run.step, run.time, run.dt, why, s.cfl, hint);
 
+    if (fire && !s.dynamic) {
+      // FIRE (Bitzek et al. 2006): where the forces' power over the step turns negative the
+      // motion has passed a minimum along its path: stop everything and mix afresh; while it
+      // stays positive, the mixing decays after a delay and the motion gathers speed. The power
+      // is the nodal forces' work, sum f . (v_old + v_new) / 2: energy taken by PIC, friction
+      // or contact is not in it, so dissipation alone does not stop the motion (kinetic
+      // damping's test, the kinetic energy falling, is met by that too).
+      if (rep.grid.power < 0) {
+        PetscCall(ZeroParticleVelocities(sim));
+        run.fire_mix = s.fire_alpha;
+        run.fire_steps = 0;
+        run.fire_mv2 = 0; // the next step starts from rest
+        ++run.kinetic_resets;
+      } else {
+        run.fire_mv2 = rep.grid.mv2;
+        if (++run.fire_steps > s.fire_delay) run.fire_mix *= s.fire_decay;
+      }
+      run.fire_f2m = rep.grid.f2m;
+    }
     if (kinetic && !s.dynamic) {
       if (run.kinetic < run.kinetic_prev) {
         PetscCall(ZeroParticleVelocities(sim));
@@ -270,6 +331,9 @@ PetscErrorCode Relax(Simulation &sim) {
     if (s.output_every > 0 && run.step % s.output_every == 0) PetscCall(OutputSeriesFrame(sim));
 
     run.converged = !s.dynamic && ramped && run.ratio <= s.tol;
+    if (!s.relax_history.empty() &&
+        (k % s.relax_history_every == 0 || run.converged || run.stop_stage || k == s.max_steps))
+      PetscCall(HistoryRow(sim, hist, k));
     // Progress on rank 0 at most every progress_interval seconds.
     const double now = MPI_Wtime();
     if (!s.quiet && (now - t_last >= s.progress_seconds || run.converged)) {
@@ -308,6 +372,7 @@ PetscErrorCode Relax(Simulation &sim) {
       PetscCall(CheckpointWrite(sim, true));
     }
   }
+  if (hist) fclose(hist);
   if (k > s.max_steps) run.stage_step = s.max_steps;
   run.stage_seconds = MPI_Wtime() - t_start;
   run.wall_seconds += run.stage_seconds;

@@ -61,10 +61,35 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                            nullptr, s.output_every, &s.output_every, nullptr));
   PetscCall(PmpmOptionsReal("-tol", "Convergence: unbalanced-force ratio max|f|/mean|f_ext|, > 0",
                             nullptr, s.tol, &s.tol, nullptr));
-  PetscCall(PmpmOptionsEnum("-damping", "Dynamic-relaxation damping", nullptr, DampingNames,
-                            (PetscEnum)s.damping, (PetscEnum *)&s.damping, nullptr));
+  PetscCall(PmpmOptionsEnum("-damping",
+                            "Dynamic-relaxation damping: kinetic (zero the velocities at each "
+                            "peak of kinetic energy), local (Cundall), both, none, or fire "
+                            "(velocities turned toward the force, zeroed when the forces' power "
+                            "turns negative)",
+                            nullptr, DampingNames, (PetscEnum)s.damping, (PetscEnum *)&s.damping,
+                            nullptr));
   PetscCall(PmpmOptionsReal("-damping_alpha", "Local (Cundall) damping coefficient, 0 <= a < 1",
                             nullptr, s.damping_alpha, &s.damping_alpha, nullptr));
+  PetscCall(PmpmOptionsReal("-fire_alpha",
+                            "-damping fire: velocity mixing toward the force after a restart, "
+                            "0 <= a < 1",
+                            nullptr, s.fire_alpha, &s.fire_alpha, nullptr));
+  PetscCall(PmpmOptionsReal("-fire_decay",
+                            "-damping fire: factor on the mixing per step without a restart "
+                            "(after -fire_delay steps), 0 < f <= 1",
+                            nullptr, s.fire_decay, &s.fire_decay, nullptr));
+  PetscCall(PmpmOptionsInt("-fire_delay",
+                           "-damping fire: steps after a restart before the mixing decays, >= 0",
+                           nullptr, s.fire_delay, &s.fire_delay, nullptr));
+  char hist[PETSC_MAX_PATH_LEN] = "";
+  PetscCall(PetscOptionsString("-relax_history",
+                               "Write the relaxation's history (stage, step, unbalanced-force "
+                               "ratio, kinetic energy, kinetic resets, node of the largest "
+                               "unbalanced force) to this CSV file",
+                               nullptr, hist, hist, sizeof(hist), &set));
+  s.relax_history = set ? std::string(hist) : "";
+  PetscCall(PmpmOptionsInt("-relax_history_every", "Steps between -relax_history rows, >= 1",
+                           nullptr, s.relax_history_every, &s.relax_history_every, nullptr));
   PetscCall(PmpmOptionsInt("-ramp_steps", "Load ramp length in steps (0: full load at once)",
                            nullptr, s.ramp_steps, &s.ramp_steps, nullptr));
   PetscCall(PmpmOptionsReal("-pic", "PIC fraction of the particle velocity update, 0..1", nullptr,
@@ -140,6 +165,14 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscCheck(s.tol > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-tol must be > 0 (got %g)", s.tol);
   PetscCheck(s.damping_alpha >= 0 && s.damping_alpha < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-damping_alpha must be in [0, 1) (got %g)", s.damping_alpha);
+  PetscCheck(s.fire_alpha >= 0 && s.fire_alpha < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-fire_alpha must be in [0, 1) (got %g)", s.fire_alpha);
+  PetscCheck(s.fire_decay > 0 && s.fire_decay <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-fire_decay must be in (0, 1] (got %g)", s.fire_decay);
+  PetscCheck(s.fire_delay >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-fire_delay must be >= 0 (got %" PetscInt_FMT ")", s.fire_delay);
+  PetscCheck(s.relax_history_every >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-relax_history_every must be >= 1 (got %" PetscInt_FMT ")", s.relax_history_every);
   PetscCheck(s.ramp_steps >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ramp_steps must be >= 0");
   PetscCheck(s.pic >= 0 && s.pic <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-pic must be in [0, 1] (got %g)", s.pic);
@@ -541,7 +574,14 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
                             "one side of it there moves with the bodies at the node, 0 <= s < 0.5",
                             nullptr, sim.contact.chain_tail_share, &sim.contact.chain_tail_share,
                             nullptr));
+  PetscCall(PmpmOptionsReal("-chain_pic",
+                            "PIC fraction of the chains' point velocity update, 0..1 (default: "
+                            "-pic)",
+                            nullptr, sim.set.chain_pic, &sim.set.chain_pic, nullptr));
   PetscOptionsEnd();
+  if (sim.set.chain_pic < 0) sim.set.chain_pic = sim.set.pic;
+  PetscCheck(sim.set.chain_pic <= 1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-chain_pic must be in [0, 1] (got %g)", sim.set.chain_pic);
   PetscCheck(sim.contact.chain_tail_share >= 0 && sim.contact.chain_tail_share < 0.5, sim.comm,
              PETSC_ERR_ARG_OUTOFRANGE, "-chain_tail_share must be in [0, 0.5) (got %g)",
              sim.contact.chain_tail_share);

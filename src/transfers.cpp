@@ -239,7 +239,7 @@ struct PrescribedCursor {
 } // namespace
 
 void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) {
-  const double dt = prm.dt, alpha = prm.damping_alpha;
+  const double dt = prm.dt, alpha = prm.damping_alpha, mix = prm.fire_mix;
   constexpr int ND = GridDof::NDOF;
   const PrescribedVelocity *pv =
       prm.prescribed && !prm.prescribed->empty() ? prm.prescribed : nullptr;
@@ -304,9 +304,20 @@ void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) 
             node[GridDof::F + d] = 0.0;
             continue;
           }
+          const double v0 = v, f0 = f;
           if (alpha > 0.0 && v != 0.0) f -= alpha * std::fabs(f) * (v > 0.0 ? 1.0 : -1.0);
-          const double a = f / m;
+          double a = f / m;
           v += dt * a;
+          if (prm.fire) {
+            st.power += 0.5 * f0 * (v0 + v);
+            st.mv2 += m * v * v;
+            st.f2m += f0 * f0 / m;
+          }
+          if (mix > 0.0 && dt > 0.0) {
+            const double vm = (1.0 - mix) * v + mix * prm.fire_scale * f0 / m;
+            a += (vm - v) / dt;
+            v = vm;
+          }
           node[GridDof::P + d] = v;
           node[GridDof::F + d] = a;
           st.kinetic += 0.5 * m * v * v;

@@ -17,9 +17,9 @@
 
 namespace pmpm {
 
-enum class Damping { None = 0, Local = 1, Kinetic = 2, Both = 3 };
-inline constexpr const char *DampingNames[] = {"none",    "local",    "kinetic", "both",
-                                               "Damping", "DAMPING_", nullptr};
+enum class Damping { None = 0, Local = 1, Kinetic = 2, Both = 3, Fire = 4 };
+inline constexpr const char *DampingNames[] = {"none", "local",   "kinetic",  "both",
+                                               "fire", "Damping", "DAMPING_", nullptr};
 enum class InertiaScaling { None = 0, WaveSpeed = 1 };
 inline constexpr const char *InertiaScalingNames[] = {"none", "wave_speed", "InertiaScaling",
                                                       "INERTIA_", nullptr};
@@ -46,6 +46,15 @@ struct Settings {
   double tol = 1e-6;                  // -tol, unbalanced-force ratio for convergence
   Damping damping = Damping::Kinetic; // BENCHMARKS.md: 0.38x the steps of local damping
   double damping_alpha = 0.8;
+  // -damping fire (relaxation.cpp): FIRE's mixing at a restart, its decay factor per step, and
+  // the steps after a restart before it decays (Bitzek et al. 2006: 0.1, 0.99, 5)
+  double fire_alpha = 0.1, fire_decay = 0.99;
+  PetscInt fire_delay = 5;
+  double chain_pic = -1; // -chain_pic: PIC fraction of the chains' points (< 0: -pic)
+  // -relax_history FILE: every -relax_history_every steps one CSV row (stage, step, ratio, kinetic
+  // energy, resets, the node of the largest unbalanced force): where and how a relaxation stalls
+  std::string relax_history;
+  PetscInt relax_history_every = 100;
   PetscInt ramp_steps = 0;
   double pic = 0.05; // a little PIC damps the FLIP velocity noise the grid cannot see
   Transfer transfer = Transfer::Flip; // -transfer apic: affine transfers (affine.hpp)
@@ -138,6 +147,10 @@ struct RunState {
   double local_unbalanced = 0;              // this rank's largest nodal unbalanced force
   double local_unbalanced_at[DIM] = {0, 0}; // and its node
   PetscInt kinetic_resets = 0;
+  // -damping fire: the mixing now, steps since the last restart, and the last step's global
+  // sum m v^2 and sum f^2 / m (the mixing's scale; not checkpointed: a resumed stage restarts them)
+  double fire_mix = 0, fire_mv2 = 0, fire_f2m = 0;
+  PetscInt fire_steps = 0;
   bool stop_stage = false; // set by a scene's monitor: end the stage unconverged (a collapse)
   // What Relax carries from one step of a stage to the next (a checkpoint saves it): the wave
   // speed at the stage's start (the instability test's speed limit), the kinetic energy 100

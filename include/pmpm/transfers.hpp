@@ -67,6 +67,11 @@ void PrescribedVelocitySort(PrescribedVelocity &pv);
 struct GridUpdateParams {
   double dt = 0;
   double damping_alpha = 0; // Cundall local non-viscous damping coefficient (0 = none)
+  // FIRE (Bitzek et al. 2006, Phys. Rev. Lett. 97, 170201), the velocity mixing on the free dofs:
+  //   v <- (1 - fire_mix) v + fire_mix s f / m,   s = |v|_M / |M^-1 f|_M (the last step's, global)
+  // so that v turns toward the force; 0: none. The restart lives in the relaxation loop.
+  double fire_mix = 0, fire_scale = 0;
+  bool fire = false; // sum GridStats::power, mv2, f2m (FIRE's restart test and norms)
   FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
   const PrescribedVelocity *prescribed = nullptr; // may be null (none)
 };
@@ -79,6 +84,10 @@ struct GridStats {
   double kinetic = 0;          // nodal kinetic energy 1/2 m v^2 after the update
   double support_force[DIM] = {0, 0}; // sum of weight f over the prescribed dofs (this rank)
   double support_power = 0; // power of the supports on the body, -sum f v_prescribed (this rank)
+  // over the free dofs of every body (this rank): the power of the nodal forces over the step,
+  // sum f . (v_old + v_new) / 2 (not counting local damping, contact, friction or PIC), and
+  // sum m v_new^2 and sum f^2 / m (FIRE's norms)
+  double power = 0, mv2 = 0, f2m = 0;
 };
 
 // On the owned nodes of the global vector: v = p/m, a = (f - alpha |f| sign(v)) / m, v += dt a,
