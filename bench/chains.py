@@ -2,7 +2,7 @@
 """Membrane chains (issue 8): what they cost, and what they cost scenes without them.
 
     /usr/bin/python3 bench/chains.py            # ~10 min on 2 cores; rewrites the "Membrane
-                                                # chains" section of BENCHMARKS.md
+                                                # chains" section of docs/benchmarks/chains.md
     /usr/bin/python3 bench/chains.py --quick    # seconds; writes bench/out/chains/CHAINS.md only
 
 1. Scenes without chains pay nothing: the landfill and the column timed with this binary and with

@@ -4,7 +4,7 @@ to slide on the sheet, found by bisection, beside the infinite-slope and Koerner
 
     /usr/bin/python3 bench/cover_veneer.py          # ~5 min on 2 cores; writes
                                                     # bench/out/cover_veneer/VENEER.md and its
-                                                    # section of BENCHMARKS.md
+                                                    # section of docs/benchmarks/cover_veneer.md
     /usr/bin/python3 bench/cover_veneer.py --cohesion 0   # the cohesionless cover (Koerner-Soong's
                                                           # assumption; tests/test_cover_veneer.py)
     /usr/bin/python3 bench/cover_veneer.py --quick  # three angles, no bisection

@@ -4,7 +4,7 @@ finding equilibrium, against Prandtl's (2 + pi) k (von Mises) and Prandtl-Reissn
 (c-phi Drucker-Prager), with and without F-bar, at two cell sizes.
 
     /usr/bin/python3 bench/footing.py            # ~20 min on 2 cores; rewrites the "Strip
-                                                 # footing" section of BENCHMARKS.md
+                                                 # footing" section of docs/benchmarks/footing.md
     /usr/bin/python3 bench/footing.py --quick    # h = B/16 only; bench/out/footing/ only
 
 Each run loads pressure stages (fractions of the exact capacity) in one relaxation; a stage
@@ -71,7 +71,7 @@ def bracket(soil, variant, h):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="h = B/16 only; no BENCHMARKS.md update")
+    ap.add_argument("--quick", action="store_true", help="h = B/16 only; no docs/benchmarks/footing.md update")
     a = ap.parse_args()
     hs = (0.0625,) if a.quick else (0.0625, 0.03125)
     rows = []

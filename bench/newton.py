@@ -2,7 +2,7 @@
 """Implicit Newton (-solver newton) against dynamic relaxation: time to equilibrium and error.
 
     /usr/bin/python3 bench/newton.py           # ~10 min on 2 cores; rewrites the "Implicit solver"
-                                               # section of BENCHMARKS.md and bench/newton.png
+                                               # section of docs/benchmarks/newton.md and bench/newton.png
     /usr/bin/python3 bench/newton.py --quick   # seconds; writes bench/out/newton/NEWTON.md only
 
 1. The column under self-weight (options/column.opts, linear elastic, and column_large.opts,

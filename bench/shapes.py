@@ -3,7 +3,7 @@
 default stays chosen by evidence.
 
     /usr/bin/python3 bench/shapes.py                       # ~10 min on 2 cores; rewrites the
-                                                           # "Shapes" section of BENCHMARKS.md
+                                                           # "Shapes" section of docs/benchmarks/shapes.md
     /usr/bin/python3 bench/shapes.py --quick               # seconds; bench/out/shapes/ only
     /usr/bin/python3 bench/shapes.py --baseline EXE        # also time uGIMP with EXE, a pmpm
                                                            # built from the parent revision

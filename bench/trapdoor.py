@@ -6,7 +6,7 @@ and K = Ka (FIELD.md 3.4); then how the curve's minimum moves with the door's ra
     /usr/bin/python3 bench/trapdoor.py          # ~25 min on 2 cores; writes bench/out/trapdoor/
                                                 # (TRAPDOOR.md, the runs), bench/trapdoor.png,
                                                 # bench/trapdoor_deformed.png and its section
-                                                # of BENCHMARKS.md
+                                                # of docs/benchmarks/trapdoor.md
     /usr/bin/python3 bench/trapdoor.py --quick  # H/B = 1 only, no rate or cell study
     /usr/bin/python3 bench/trapdoor.py --reuse  # tables and pictures from the runs already made
 
@@ -99,7 +99,7 @@ def main():
     curves = [r for r in res if r["name"].startswith("hb") and "h8" not in r["name"]]
     subprocess.run([sys.executable, str(ROOT / "scripts" / "plot_trapdoor.py"),
                     *[str(r["dir"]) for r in curves]], check=True)
-    # the pictures BENCHMARKS.md and README.md show live in bench/ (bench/out is not kept)
+    # the pictures docs/benchmarks/ and docs/trapdoor.md show live in bench/ (bench/out is not kept)
     shutil.copy(curves[0]["dir"] / "trapdoor.png", ROOT / "bench" / "trapdoor.png")
     shutil.copy(curves[0]["dir"] / "trapdoor_deformed.png",
                 ROOT / "bench" / "trapdoor_deformed.png")
