@@ -227,7 +227,7 @@ def main():
           "1e-7 for the columns, 1e-5 for the landfill, the same test for both solvers); work is "
           "explicit steps, or load steps / Newton iterations / linear iterations (10 load steps, "
           "or as many as -newton_cell_fraction asks, then equilibrium steps on the reset grid). "
-          "Errors: L2 against the exact solution (REFERENCE.md 2.2).", "",
+          "Errors: L2 against the exact solution (docs/method.md, section 2.2).", "",
           "| column | cells | solver | seconds | work | converged | stress error | "
           "displacement error |", "|---|---|---|---|---|---|---|---|"]
     for r in rows:

@@ -1,5 +1,5 @@
 """Veneer on the finite slope of the cover scene (issue 9): where the cover starts to slide on the
-sheet, beside Koerner and Soong's two-wedge factor of safety (FIELD.md 3.3).
+sheet, beside Koerner and Soong's two-wedge factor of safety (docs/method.md, section 6.3).
 
 usage: test_cover_veneer.py EXE NP OUTDIR
 options/cover_slope.opts, stage 0 only (the veneer under its own weight), h = 0.5 m: a 0.57 m
