@@ -156,7 +156,7 @@ def main():
     print("2. the landfill's membrane as a chain")
     md += ["### The seed landfill: resolved membrane against a chain", "",
            "Load II, 2 ranks; the chain lies on top of the 1 mm membrane layer, which is given to "
-           "the waste (README).", "", landfill(exe, a.quick)]
+           "the waste (docs/landfill.md).", "", landfill(exe, a.quick)]
     print("3. stiff sheet on soft waste")
     md += ["### Stress test: a stiff sheet on soft waste", "",
            "The seed landfill with its membrane a chain (contact, mu = 0.5), field unit weights "

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The strip footing's capacity brackets (issue 11, README "Anti-locking"): where the soil stops
+"""The strip footing's capacity brackets (issue 11, docs/anti-locking.md): where the soil stops
 finding equilibrium, against Prandtl's (2 + pi) k (von Mises) and Prandtl-Reissner's c N_c
 (c-phi Drucker-Prager), with and without F-bar, at two cell sizes.
 
@@ -12,7 +12,7 @@ Each run loads pressure stages (fractions of the exact capacity) in one relaxati
 stops at the first that does not (options/footing.opts and footing_cphi.opts explain the
 scene). The bracket is (largest that held, first that did not). 1 rank; the c-phi soil is 4.5 m
 wide (Prandtl's mechanism reaches 3.03 B at phi = 20 deg), the von Mises soil 3 m (1.5 B).
-Plain F-bar with the dilatant c-phi soil is refused by pmpm (README): its row shows the refusal.
+Plain F-bar with the dilatant c-phi soil is refused by pmpm (docs/anti-locking.md): its row shows the refusal.
 """
 import argparse
 import math

@@ -486,7 +486,7 @@ def main():
           "- the compute coefficients are this machine's (one core of a shared 2-core box, "
           "core-share corrected) and do not change with P (no cache effects);",
           "- perfect balance of particles (-balance setup gives 1.001-1.01 on x-splits; on "
-          "2-D grids less even, README \"Running on more ranks\"), and the process grid with "
+          "2-D grids less even, docs/cluster.md, \"Running on more ranks\"), and the process grid with "
           "the fewest halo bytes on its busiest rank;",
           f"- migration in {100 * mig['per_step']:.0f} % of the steps (the settling "
           "degradation example on 2 ranks; more rank boundaries would raise it; a relaxation "

@@ -8,7 +8,7 @@ each stage relaxed to -tol 1e-4. Terzaghi (docs/method.md, section 6.4, c = q = 
 0.5931, K = Ka = 1/3 gives 0.8300.
 
 Measured here (1 and 2 ranks agree to the 9 digits summary.json prints): 1, 0.579, 0.544, 0.534
-(the minimum, at 1 % B), 0.538, 0.546. Elsewhere (BENCHMARKS.md, "Active trapdoor"), H/B = 1:
+(the minimum, at 1 % B), 0.538, 0.546. Elsewhere (docs/benchmarks/trapdoor.md), H/B = 1:
   h = B/8:  rate 3e-5: minimum 0.555; with -fbar at 1e-5: 0.549 (at 3 % B, still falling slowly)
   h = B/16: rate 1e-4: 0.667; 3e-5: 0.591; 1e-5: 0.561; with -fbar at 3e-5: 0.610
 The minimum rises with refinement and with -fbar (linear cells' locked shear bands carry more

@@ -23,7 +23,7 @@
 // 2008, 15.3): the power is then exactly sum_p V_p s_p : D_p + p_bar sum_p V_p tr D_p, the
 // stress power of the averaged volume change. It is not the default: on the slope cover
 // (options/cover_slope.opts, psi = 0) it lets the thin cover creep at its surface and the
-// geostatic stage ends its 30,000 steps at a ratio of 1e-2 (README, Anti-locking).
+// geostatic stage ends its 30,000 steps at a ratio of 1e-2 (docs/anti-locking.md).
 #pragma once
 #include "pmpm/particles.hpp"
 #include <vector>
