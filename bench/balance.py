@@ -3,8 +3,8 @@
 
     /usr/bin/python3 bench/balance.py          # ~6 min on 2 cores; writes
                                                # bench/out/balance/BALANCE.md and its section of
-                                               # BENCHMARKS.md
-    /usr/bin/python3 bench/balance.py --quick  # the slope only, fewer steps, no BENCHMARKS.md
+                                               # docs/benchmarks/balance.md
+    /usr/bin/python3 bench/balance.py --quick  # the slope only, fewer steps, no docs/benchmarks/balance.md
 
 Each cover example runs a fixed number of steps per stage (-tol 1e-300, so both partitions take
 the same steps) with -balance none (PETSc's even split of the nodes) and -balance setup, on 2

@@ -1,5 +1,6 @@
-"""What the studies in bench/ share: the environment they launch pmpm under, and BENCHMARKS.md,
-which several studies write, each owning a section between its own markers."""
+"""What the studies in bench/ share: the environment they launch pmpm under, and the study files in
+docs/benchmarks/, one per study, each written by its script between its own markers
+(`<!-- chains.py begin -->` ... `<!-- chains.py end -->` goes to docs/benchmarks/chains.md)."""
 import json
 import os
 import shutil
@@ -8,7 +9,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-BENCHMARKS = ROOT / "BENCHMARKS.md"
+BENCH_DOCS = ROOT / "docs" / "benchmarks"  # one file per study; README.md there is the index
 
 # mpiexec as root, and more ranks than cores (the 4-rank layouts on a 2-core machine)
 MPI_ENV = dict(os.environ, OMPI_MCA_rmaps_base_oversubscribe="1")
@@ -16,21 +17,35 @@ if os.geteuid() == 0:
     MPI_ENV.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
+def study_file(begin):
+    """The file in docs/benchmarks/ a study's section lives in, from its begin marker:
+    "<!-- chains.py begin -->" -> docs/benchmarks/chains.md, "<!-- memory begin -->" -> memory.md."""
+    name = begin.strip().removeprefix("<!--").removesuffix("-->").strip().removesuffix(" begin")
+    return BENCH_DOCS / (name.removesuffix(".py") + ".md")
+
+
 def replace_section(text, begin, end):
     """Put `text` (which starts with `begin` and ends with `end`) in place of the section between
-    those markers in BENCHMARKS.md, or append it when the file has none yet."""
-    old = BENCHMARKS.read_text()
-    if begin in old:
+    those markers in the study's own file docs/benchmarks/<study>.md (study_file), or start that
+    file when it does not exist or has no such section yet. The study's image links (written
+    relative to the repository root, `](bench/x.png)`) are made relative to docs/benchmarks/."""
+    text = text.replace("](bench/", "](../../bench/")
+    path = study_file(begin)
+    old = path.read_text() if path.exists() else ""
+    if begin in old and end in old:
         new = old[:old.index(begin)] + text.rstrip("\n") + old[old.index(end) + len(end):]
-    else:
+    elif old.strip():
         new = old.rstrip("\n") + "\n\n" + text
-    BENCHMARKS.write_text(new)
-    print("updated BENCHMARKS.md")
+    else:
+        new = text
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(new.rstrip("\n") + "\n")
+    print(f"updated {path.relative_to(ROOT)}")
 
 
 def publish(text, path, begin, end, update):
-    """A study's result: written to its own file `path`, printed, and put in its BENCHMARKS.md
-    section when `update` (a full run, not a quick or partial one)."""
+    """A study's result: written to its own file `path`, printed, and put in its section of
+    docs/benchmarks/<study>.md when `update` (a full run, not a quick or partial one)."""
     Path(path).write_text(text)
     print(text)
     if update:

@@ -2,7 +2,7 @@
 """Membrane chains (issue 8): what they cost, and what they cost scenes without them.
 
     /usr/bin/python3 bench/chains.py            # ~10 min on 2 cores; rewrites the "Membrane
-                                                # chains" section of BENCHMARKS.md
+                                                # chains" section of docs/benchmarks/chains.md
     /usr/bin/python3 bench/chains.py --quick    # seconds; writes bench/out/chains/CHAINS.md only
 
 1. Scenes without chains pay nothing: the landfill and the column timed with this binary and with
@@ -156,7 +156,7 @@ def main():
     print("2. the landfill's membrane as a chain")
     md += ["### The seed landfill: resolved membrane against a chain", "",
            "Load II, 2 ranks; the chain lies on top of the 1 mm membrane layer, which is given to "
-           "the waste (README).", "", landfill(exe, a.quick)]
+           "the waste (docs/landfill.md).", "", landfill(exe, a.quick)]
     print("3. stiff sheet on soft waste")
     md += ["### Stress test: a stiff sheet on soft waste", "",
            "The seed landfill with its membrane a chain (contact, mu = 0.5), field unit weights "

@@ -2,7 +2,7 @@
 """Field covers (issue 9): what resolution each shipped example needs for its answer to hold.
 
     /usr/bin/python3 bench/cover_refinement.py            # ~75 min on 2 cores; rewrites the
-                                                          # "Field covers" section of BENCHMARKS.md
+                                                          # "Field covers" section of docs/benchmarks/cover_refinement.md
     /usr/bin/python3 bench/cover_refinement.py --quick    # the slope only, two meshes, ~4 min;
                                                           # writes bench/out/cover_refinement/ only
     /usr/bin/python3 bench/cover_refinement.py --only slope,sinkhole

@@ -4,7 +4,7 @@ to slide on the sheet, found by bisection, beside the infinite-slope and Koerner
 
     /usr/bin/python3 bench/cover_veneer.py          # ~5 min on 2 cores; writes
                                                     # bench/out/cover_veneer/VENEER.md and its
-                                                    # section of BENCHMARKS.md
+                                                    # section of docs/benchmarks/cover_veneer.md
     /usr/bin/python3 bench/cover_veneer.py --cohesion 0   # the cohesionless cover (Koerner-Soong's
                                                           # assumption; tests/test_cover_veneer.py)
     /usr/bin/python3 bench/cover_veneer.py --quick  # three angles, no bisection
@@ -13,7 +13,7 @@ options/cover_slope.opts without its degradation stages (stage 0 only: the venee
 weight), the sheet's lower face held (delta 40 deg on the waste), its upper face at delta. A run
 "holds" when stage 0 converges with the cover's slip on the sheet below 5 cm; otherwise the cover
 slides (the run hits its step cap with the slip growing). The bisection brackets the threshold
-delta to 0.25 deg. The closed forms (FIELD.md 3.3, tests/closed_forms.py): the infinite slope
+delta to 0.25 deg. The closed forms (docs/method.md, section 6.3, tests/closed_forms.py): the infinite slope
 slides below delta = beta; Koerner and Soong's finite slope, with its passive toe wedge, holds down
 to the delta where FS = 1 (the wedge helps, so lower). pmpm's threshold is expected near the
 Koerner-Soong value; the difference is reported, not asserted (a limit-equilibrium estimate with
@@ -114,7 +114,7 @@ def main():
           "| delta (deg) | pmpm |", "|---|---|"]
     md += [f"| {d:.3f} | {'holds' if ok else 'slides'} |" for d, ok in sorted(rows)]
     md += ["", f"- infinite slope: slides below delta = {beta:.2f} deg (FS = tan delta / tan beta)",
-           f"- Koerner-Soong (FIELD.md 3.3, cohesion and adhesion zero): FS = 1 at delta = "
+           f"- Koerner-Soong (docs/method.md, section 6.3, cohesion and adhesion zero): FS = 1 at delta = "
            f"{delta_ks:.2f} deg",
            f"- pmpm: threshold {thr:.2f} deg" + ("" if math.isnan(thr) else
                                                   f" ({thr - delta_ks:+.2f} deg from Koerner-Soong,"

@@ -3,7 +3,7 @@
 
     /usr/bin/python3 bench/estimate_error.py              # shipped cells h and h/2, 2 ranks:
                                                           # about 25 min idle; rewrites its
-                                                          # section of BENCHMARKS.md
+                                                          # section of docs/benchmarks/estimate_error.md
     /usr/bin/python3 bench/estimate_error.py --coarse 2   # cells 2h and h (a quick look, ~4 min)
     /usr/bin/python3 bench/estimate_error.py --only slope --levels 3
 

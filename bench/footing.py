@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-"""The strip footing's capacity brackets (issue 11, README "Anti-locking"): where the soil stops
+"""The strip footing's capacity brackets (issue 11, docs/anti-locking.md): where the soil stops
 finding equilibrium, against Prandtl's (2 + pi) k (von Mises) and Prandtl-Reissner's c N_c
 (c-phi Drucker-Prager), with and without F-bar, at two cell sizes.
 
     /usr/bin/python3 bench/footing.py            # ~20 min on 2 cores; rewrites the "Strip
-                                                 # footing" section of BENCHMARKS.md
+                                                 # footing" section of docs/benchmarks/footing.md
     /usr/bin/python3 bench/footing.py --quick    # h = B/16 only; bench/out/footing/ only
 
 Each run loads pressure stages (fractions of the exact capacity) in one relaxation; a stage
@@ -12,7 +12,7 @@ Each run loads pressure stages (fractions of the exact capacity) in one relaxati
 stops at the first that does not (options/footing.opts and footing_cphi.opts explain the
 scene). The bracket is (largest that held, first that did not). 1 rank; the c-phi soil is 4.5 m
 wide (Prandtl's mechanism reaches 3.03 B at phi = 20 deg), the von Mises soil 3 m (1.5 B).
-Plain F-bar with the dilatant c-phi soil is refused by pmpm (README): its row shows the refusal.
+Plain F-bar with the dilatant c-phi soil is refused by pmpm (docs/anti-locking.md): its row shows the refusal.
 """
 import argparse
 import math
@@ -71,7 +71,7 @@ def bracket(soil, variant, h):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="h = B/16 only; no BENCHMARKS.md update")
+    ap.add_argument("--quick", action="store_true", help="h = B/16 only; no docs/benchmarks/footing.md update")
     a = ap.parse_args()
     hs = (0.0625,) if a.quick else (0.0625, 0.03125)
     rows = []

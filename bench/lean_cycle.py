@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """A leaner explicit cycle (issue 12): each change to the uGIMP step measured on its own.
 
-    /usr/bin/python3 bench/lean_cycle.py            # ~10 min: builds each revision, BENCHMARKS.md
-    /usr/bin/python3 bench/lean_cycle.py --quick    # 0.1 M particles, 1 run each, no BENCHMARKS.md
+    /usr/bin/python3 bench/lean_cycle.py            # ~10 min: builds each revision, docs/benchmarks/lean_cycle.md
+    /usr/bin/python3 bench/lean_cycle.py --quick    # 0.1 M particles, 1 run each, no docs/benchmarks/lean_cycle.md
 
 Every revision in CHANGES (the commits of the lean-cycle branches, two rounds, each one change on
 top of the previous, a dropped one followed by its revert) is built once into bench/out/lean-<rev>/ (git

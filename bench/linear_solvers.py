@@ -5,7 +5,7 @@ the bonded landfill (options/landfill.opts) at three or four cell sizes: Newton 
 iterations, wall time and peak memory.
 
     /usr/bin/python3 bench/linear_solvers.py           # ~15 min on 2 cores; rewrites the "Linear
-                                                       # solvers" section of BENCHMARKS.md
+                                                       # solvers" section of docs/benchmarks/linear_solvers.md
     /usr/bin/python3 bench/linear_solvers.py --quick   # h = 1 and 0.5 mm; bench/out only
 
 One rank each, run without mpiexec (an MPI singleton) so that /usr/bin/time's peak resident set
@@ -58,7 +58,7 @@ def run(h, extra, out, timeout=3600):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="h = 1 and 0.5 mm; no BENCHMARKS.md")
+    ap.add_argument("--quick", action="store_true", help="h = 1 and 0.5 mm; no docs/benchmarks/linear_solvers.md")
     a = ap.parse_args()
     hs = (0.001, 0.0005) if a.quick else (0.001, 0.0005, 0.00025, 0.000125)
     rows = []

@@ -2,7 +2,7 @@
 """Implicit Newton (-solver newton) against dynamic relaxation: time to equilibrium and error.
 
     /usr/bin/python3 bench/newton.py           # ~10 min on 2 cores; rewrites the "Implicit solver"
-                                               # section of BENCHMARKS.md and bench/newton.png
+                                               # section of docs/benchmarks/newton.md and bench/newton.png
     /usr/bin/python3 bench/newton.py --quick   # seconds; writes bench/out/newton/NEWTON.md only
 
 1. The column under self-weight (options/column.opts, linear elastic, and column_large.opts,
@@ -14,8 +14,8 @@
    60 x 80 cells, 18,720 particles, about 9,800 unknowns): MUMPS LU (default AMD ordering, and
    METIS by -mat_mumps_icntl_7 5), GMRES with GAMG and with hypre BoomerAMG, beside relaxation.
 3. The bonded landfill at h = 1, 0.5, 0.25 and 0.125 mm: relaxation (its load ramp scaled with the
-   mesh as README's table: 1000 steps at 0.5 mm, 2000 at 0.25, 4000 at 0.125) against Newton in
-   one load step (GMRES + BoomerAMG to -ksp_rtol 1e-4, and 1e-6), errors against the converged answer (README: settlement
+   mesh as docs/landfill.md's table: 1000 steps at 0.5 mm, 2000 at 0.25, 4000 at 0.125) against Newton in
+   one load step (GMRES + BoomerAMG to -ksp_rtol 1e-4, and 1e-6), errors against the converged answer (docs/landfill.md: settlement
    2.958 mm at X = 15 mm, peak membrane strain 1.76 %).
 4. A cover with stages: the shrinking cover column (tests/cover_column.opts, its sheet bonded, two
    shrinkage stages of e_v = 0.05) at 0.25, 0.125 and 0.0625 m cells, relaxation, Newton with its
@@ -109,7 +109,7 @@ def landfill_study():
     return rows
 
 
-# the converged landfill (README "Landfill results beside the paper's": the two finest meshes)
+# the converged landfill (docs/landfill.md: the two finest meshes)
 LANDFILL_SETTLE, LANDFILL_STRAIN = 2.958e-3, 1.76e-2
 # GMRES + BoomerAMG (pmpm's BoomerAMG defaults, newton.cpp BoomerAMGDefaults) to a 1e-4 reduction a
 # linear solve: Newton's own tolerances decide the answer (the landfill at h = 0.125 mm: the same
@@ -227,7 +227,7 @@ def main():
           "1e-7 for the columns, 1e-5 for the landfill, the same test for both solvers); work is "
           "explicit steps, or load steps / Newton iterations / linear iterations (10 load steps, "
           "or as many as -newton_cell_fraction asks, then equilibrium steps on the reset grid). "
-          "Errors: L2 against the exact solution (REFERENCE.md 2.2).", "",
+          "Errors: L2 against the exact solution (docs/method.md, section 2.2).", "",
           "| column | cells | solver | seconds | work | converged | stress error | "
           "displacement error |", "|---|---|---|---|---|---|---|---|"]
     for r in rows:
@@ -237,7 +237,7 @@ def main():
     md += ["", "![error against time](bench/newton.png)", ""]
     md += ["Bonded landfill at four resolutions (options/landfill.opts; relaxation's load ramp "
            "scaled with the mesh; errors against the converged answer, settlement 2.958 mm, peak "
-           "membrane strain 1.76 %, README; the peak strain's own spread between the two finest "
+           "membrane strain 1.76 %, docs/landfill.md; the peak strain's own spread between the two finest "
            "meshes is 2.4 %). The converged settlement is relaxation's own at h = 0.125 mm, so its "
            "last point is no error; Newton's settlement converges to 2.954 mm, 0.14 % below it, "
            "and which limit is nearer the truth is not established:", "",
@@ -269,7 +269,7 @@ def main():
     md.append("")
     if lrows:
         md += ["Bonded landfill, h = 0.5 mm (options/landfill.opts; converged reference: "
-               "settlement 2.958 mm, peak membrane strain 1.76 %, README):", "",
+               "settlement 2.958 mm, peak membrane strain 1.76 %, docs/landfill.md):", "",
                "| solver | seconds | work | converged | settlement at X = 15 mm (mm) | "
                "peak membrane strain (%) |", "|---|---|---|---|---|---|"]
         for r in lrows:

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """pmpm benchmarks: work-precision, throughput, parallel speed-up, and the cost of skipped stages.
 
-    /usr/bin/python3 bench/run.py            # full run (~20 min): BENCHMARKS.md + bench/*.png
+    /usr/bin/python3 bench/run.py            # full run (~20 min): docs/benchmarks/run.md + bench/*.png
     /usr/bin/python3 bench/run.py --quick    # CI smoke run (< 1 min): bench/out/BENCHMARKS.md, bench/out/*.png
     /usr/bin/python3 bench/run.py --full     # also the landfill at -cell_size 0.000125 (~+25 min)
 
@@ -1288,7 +1288,7 @@ def main():
     only = set(args.only.split(","))
     runs_dir = OUT / ("runs-quick" if args.quick else "runs")
     fig_dir = OUT if args.quick else BENCH
-    md_path = OUT / "BENCHMARKS.md" if args.quick else ROOT / "BENCHMARKS.md"
+    md_path = OUT / "BENCHMARKS.md" if args.quick else ROOT / "docs" / "benchmarks" / "run.md"
     runs_dir.mkdir(parents=True, exist_ok=True)
     fig_dir.mkdir(parents=True, exist_ok=True)
     src_bin = ROOT / "build" / "pmpm"
@@ -1410,10 +1410,9 @@ def main():
     md.append("")
     md.append("Section times: " + ", ".join(f"{k}: {v / 60:.1f} min" for k, v in timings.items()))
     text = "\n".join(head_md + md) + "\n"
-    md_path.write_text(text)
-    # rewrite image links for the quick report (it sits in bench/out/)
-    if args.quick:
-        md_path.write_text(text.replace("](bench/", "]("))
+    # image links relative to the report: the quick one sits in bench/out/ beside its plots, the
+    # full one in docs/benchmarks/ (its plots in bench/)
+    md_path.write_text(text.replace("](bench/", "](" if args.quick else "](../../bench/"))
     print(text)
     log(f"wrote {os.path.relpath(md_path, ROOT)} and the plots in {os.path.relpath(fig_dir, ROOT)}/")
 

@@ -5,8 +5,8 @@ measured on 1, 2 and 4 ranks, then projected to 64-1024 ranks for a 100 m cover 
 
     /usr/bin/python3 bench/scaling.py          # ~6 min on 2 busy cores; writes
                                                # bench/out/scaling/SCALING.md, bench/scaling.png
-                                               # and the "Scaling model" section of BENCHMARKS.md
-    /usr/bin/python3 bench/scaling.py --quick  # fewer steps, no drift run, no BENCHMARKS.md
+                                               # and the "Scaling model" section of docs/benchmarks/scaling.md
+    /usr/bin/python3 bench/scaling.py --quick  # fewer steps, no drift run, no docs/benchmarks/scaling.md
 
 Measurements (all with -log_view; PETSc counts every MPI_Allreduce / MPI_Bcast of pmpm's own code
 as a reduction and every message of the DMDA ghost exchanges and the DMSwarm migration):
@@ -409,7 +409,7 @@ def main():
     L.append(f"| Chain | chain point | {1e9 * per['Chain']:.1f} | {ev_time(lg1, 'Chain'):.3f} |")
     L += ["", f"t_p = {1e9 * t_p:.0f} ns per particle-step, t_n = {1e9 * t_n:.0f} ns per "
           f"node-step, t_c = {1e9 * per['Chain']:.0f} ns per chain point-step. "
-          f"(BENCHMARKS.md section 2 measured the column's P2G + G2P + stress at about 80 ns "
+          f"(docs/benchmarks/run.md section 2 measured the column's P2G + G2P + stress at about 80 ns "
           f"per particle-step on an idle core; the cover adds Drucker-Prager's return map, "
           f"F-bar and the eigenstrain.)", ""]
     if samples:
@@ -486,7 +486,7 @@ def main():
           "- the compute coefficients are this machine's (one core of a shared 2-core box, "
           "core-share corrected) and do not change with P (no cache effects);",
           "- perfect balance of particles (-balance setup gives 1.001-1.01 on x-splits; on "
-          "2-D grids less even, README \"Running on more ranks\"), and the process grid with "
+          "2-D grids less even, docs/cluster.md, \"Running on more ranks\"), and the process grid with "
           "the fewest halo bytes on its busiest rank;",
           f"- migration in {100 * mig['per_step']:.0f} % of the steps (the settling "
           "degradation example on 2 ranks; more rank boundaries would raise it; a relaxation "

@@ -3,7 +3,7 @@
 default stays chosen by evidence.
 
     /usr/bin/python3 bench/shapes.py                       # ~10 min on 2 cores; rewrites the
-                                                           # "Shapes" section of BENCHMARKS.md
+                                                           # "Shapes" section of docs/benchmarks/shapes.md
     /usr/bin/python3 bench/shapes.py --quick               # seconds; bench/out/shapes/ only
     /usr/bin/python3 bench/shapes.py --baseline EXE        # also time uGIMP with EXE, a pmpm
                                                            # built from the parent revision
@@ -72,7 +72,7 @@ def bar_errors(out):
 def sweep(name, base, hs, h0, errors, quick):
     """Every shape at every h; rows (h, shape, particles, steps, converged, time, es, eu, note).
     The options file's ramp (2000 steps at its cell size h0) is scaled by h0 / h, so every mesh
-    ramps the load over the same physical time, a few wave transits (README, Known limitations:
+    ramps the load over the same physical time, a few wave transits (docs/limitations.md:
     a fixed step count is a faster, more dynamic ramp on a finer mesh)."""
     rows = []
     for h in hs[:2] if quick else hs:

@@ -2,7 +2,7 @@
 """Particle-grid transfers (issue 11): FLIP, FLIP with a PIC blend, PIC and APIC (-transfer apic).
 
     /usr/bin/python3 bench/transfers.py          # ~3 min on 2 cores; rewrites the "Transfers"
-                                                 # section of BENCHMARKS.md and
+                                                 # section of docs/benchmarks/transfers.md and
                                                  # bench/work_precision_transfers.png
     /usr/bin/python3 bench/transfers.py --quick  # h = 0.05 m only, seconds; writes
                                                  # bench/out/transfers/ only

@@ -1,12 +1,12 @@
 #!/usr/bin/python3
 """The active trapdoor's ground reaction curve (issue 11): the pressure on the door over gamma H
 against the door's displacement over B, for H/B = 1, 2, 3, beside Terzaghi's arching with K = 1
-and K = Ka (FIELD.md 3.4); then how the curve's minimum moves with the door's rate and the cell.
+and K = Ka (docs/method.md, section 6.4); then how the curve's minimum moves with the door's rate and the cell.
 
     /usr/bin/python3 bench/trapdoor.py          # ~25 min on 2 cores; writes bench/out/trapdoor/
                                                 # (TRAPDOOR.md, the runs), bench/trapdoor.png,
                                                 # bench/trapdoor_deformed.png and its section
-                                                # of BENCHMARKS.md
+                                                # of docs/benchmarks/trapdoor.md
     /usr/bin/python3 bench/trapdoor.py --quick  # H/B = 1 only, no rate or cell study
     /usr/bin/python3 bench/trapdoor.py --reuse  # tables and pictures from the runs already made
 
@@ -99,7 +99,7 @@ def main():
     curves = [r for r in res if r["name"].startswith("hb") and "h8" not in r["name"]]
     subprocess.run([sys.executable, str(ROOT / "scripts" / "plot_trapdoor.py"),
                     *[str(r["dir"]) for r in curves]], check=True)
-    # the pictures BENCHMARKS.md and README.md show live in bench/ (bench/out is not kept)
+    # the pictures docs/benchmarks/ and docs/trapdoor.md show live in bench/ (bench/out is not kept)
     shutil.copy(curves[0]["dir"] / "trapdoor.png", ROOT / "bench" / "trapdoor.png")
     shutil.copy(curves[0]["dir"] / "trapdoor_deformed.png",
                 ROOT / "bench" / "trapdoor_deformed.png")
@@ -111,7 +111,7 @@ def main():
     md = [MARK_BEGIN, "## Active trapdoor: ground reaction curve (bench/trapdoor.py)", "",
           "options/trapdoor.opts (phi 30 deg, psi 0, c = 0, plane-strain-matched Drucker-Prager, "
           "E 20 MPa, nu 0.3, 18 kN/m^3), B = 1 m, half model 2.5 B wide, one rank. p: the door's "
-          "force over its width; Terzaghi (FIELD.md 3.4, c = q = 0) with K = 1 and K = Ka = "
+          "force over its width; Terzaghi (docs/method.md, section 6.4, c = q = 0) with K = 1 and K = Ka = "
           f"{ka:.3f}. Door rate in cells per step; h in B. Binary of git "
           f"{git_rev()}; command: `/usr/bin/python3 bench/trapdoor.py` (two runs at a time on "
           "the 2-core machine, shared; wall times are under that load).", "",

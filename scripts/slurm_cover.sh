@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A pmpm cover on a Slurm cluster (README "Running on a cluster"): the sinkhole example widened to
+# A pmpm cover on a Slurm cluster (docs/cluster.md): the sinkhole example widened to
 # a 100 m cover at 2 cm cells (11.2 M particles), 256 ranks on a 64 x 4 process grid, output on
 # scratch, a checkpoint every CKPT_EVERY steps and at every stage's end. Submit it again after a
 # time limit: it resumes from the newest complete checkpoint in the output directory.
@@ -18,7 +18,7 @@
 set -euo pipefail
 
 # Placeholders: the site's modules for the compiler, MPI, PETSc (with HDF5) and Eigen that pmpm
-# was built with (README "Dependencies").
+# was built with (docs/user-guide.md, "Dependencies").
 # module load gcc/12 openmpi/4.1 petsc/3.18 hdf5/1.12 eigen/3.4
 
 PMPM=${PMPM:-$HOME/pmpm/build/pmpm}
@@ -31,7 +31,7 @@ EXTRA=${EXTRA:--cell_size 0.02 -cover_width 100 -cover_void_x 50 -max_steps 5000
 # and fewer rank boundaries through the settling waste); the product must be the rank count.
 GRID=${GRID:--da_processors_x 64 -da_processors_y 4}
 OUT=${OUT:-${SCRATCH:-/scratch/$USER}/pmpm/cover100}
-CKPT_EVERY=${CKPT_EVERY:-100000}  # steps between checkpoints (README: 30-60 min of run time)
+CKPT_EVERY=${CKPT_EVERY:-100000}  # steps between checkpoints (docs/cluster.md: 30-60 min of run time)
 
 mkdir -p "$OUT"
 

@@ -128,8 +128,7 @@ struct EstimateOptions {
 
 static PetscErrorCode ReadEstimateOptions(MPI_Comm comm, EstimateOptions &e) {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, nullptr, "Design answers: error estimate (README: Design answers)",
-                    nullptr);
+  PetscOptionsBegin(comm, nullptr, "Design answers: error estimate (docs/outputs.md)", nullptr);
   PetscCall(PetscOptionsBool("-estimate_error",
                              "Run at -cell_size and at half of it and report every design answer "
                              "with its estimated discretisation error (Richardson / GCI); the "
@@ -151,7 +150,7 @@ static PetscErrorCode ReadEstimateOptions(MPI_Comm comm, EstimateOptions &e) {
 }
 
 // The whole process: the meshes, then the verdict as the log's last line. *code is the exit
-// code the verdict asks for (README: exit codes).
+// code the verdict asks for (docs/outputs.md: exit codes).
 static PetscErrorCode Run(int *code) {
   MPI_Comm comm = PETSC_COMM_WORLD;
   EstimateOptions est;
@@ -191,9 +190,9 @@ static PetscErrorCode Run(int *code) {
   PetscFunctionReturn(0);
 }
 
-// The process's exit code for an error (README: exit codes): 1 for input the run refused (an
-// option, an options file, a checkpoint), 2 for a run that failed (an instability, a collapse of
-// Newton's load steps, a file that could not be written, too little memory).
+// The process's exit code for an error (docs/outputs.md: exit codes): 1 for input the run refused
+// (an option, an options file, a checkpoint), 2 for a run that failed (an instability, a collapse
+// of Newton's load steps, a file that could not be written, too little memory).
 static int ExitCodeFor(PetscErrorCode e) {
   switch (e) {
   case PETSC_ERR_USER_INPUT:

@@ -19,7 +19,7 @@ constexpr FieldSpec kFields[] = {
     {"eps_p", 1, PETSC_REAL},  {"colour", 1, PETSC_REAL},       {"mat", 1, PETSC_INT},
     {"pid", 1, PETSC_INT},     {"body", 1, PETSC_INT},          {"load", 1, PETSC_INT},
 };
-constexpr PetscInt kBuffer = 1000; // DMSwarm reallocation slack (see PETSC_NOTES.md)
+constexpr PetscInt kBuffer = 1000; // DMSwarm reallocation slack (docs/developer-guide.md)
 } // namespace
 
 PetscErrorCode ParticlesCreate(Grid &g, Particles &P) {

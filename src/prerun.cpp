@@ -20,7 +20,7 @@ constexpr double kGridBytesPerNode = 2 * DIM * 8 + 16;
 // the generated list and the swarm's reallocation copies while it grows (96 B, measured: the
 // column's 340 B marginal peak at 1-4 M particles less its 41 B of grid and the swarm). The run's
 // scratch (velocity gradient, material index: 36 B) comes after and is smaller. The estimate
-// is 4-9 % above the measured peaks (BENCHMARKS.md, memory per particle). -transfer apic adds B.
+// is 4-9 % above the measured peaks (docs/benchmarks/memory.md). -transfer apic adds B.
 constexpr double kParticleBytes = 22 * 8 + 4 * sizeof(PetscInt) + 16 + 96;
 
 // per rank: the libraries, MPI's buffers and PETSc's objects (the resident size of a 1-rank run

@@ -408,7 +408,7 @@ PetscErrorCode Relax(Simulation &sim) {
                             at[0], at[1],
                             sim.chains.empty() ? ""
                                                : "; at a membrane's node, the contact may be "
-                                                 "chattering (README, Known limitations)"));
+                                                 "chattering (docs/limitations.md)"));
     }
   }
   // The paper's interface keeps one normal velocity for both bodies, so it also holds them

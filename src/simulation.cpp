@@ -481,7 +481,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
         sim.comm, PETSC_ERR_USER_INPUT,
         "-fbar with the dilatant material %s (-mat_%s_dilation_angle > 0) needs "
         "-fbar_pressure cell: with each particle's own pressure F-bar is unstable under "
-        "dilatant flow (README, Anti-locking)",
+        "dilatant flow (docs/anti-locking.md)",
         m.name.c_str(), m.name.c_str());
 
   // Inertia: either the given densities, or one wave speed for all materials (the fastest

@@ -1,15 +1,15 @@
 """Closed-form solutions for the field-scale cover scenes (membrane chain, anchorage, veneer,
 arching, sheet over a void, shrinkage of a restrained layer).
 
-Sources: /work/shared/reference/FIELD.md section 3 and REFERENCE.md section 1.3 (cited per
+Sources: docs/method.md, sections 1.3 and 6 (cited per
 function). SI units throughout (m, N, Pa, N/m^3); plane strain, per metre of width, so a sheet's
 force T and stiffness J are per metre (N/m) and a load w on a sheet is N/m per metre of sheet
 (N/m^2). Strains are fractions, not per cent. Angles are given in degrees where the name says
 ``_deg``.
 
 Importable by the scene tests (they run with PYTHONPATH=tests); ``/usr/bin/python3
-tests/closed_forms.py`` runs a self-check against the check values printed in FIELD.md and
-REFERENCE.md.
+tests/closed_forms.py`` runs a self-check against the check values printed in docs/method.md
+(sections 1.3 and 6).
 """
 import math
 
@@ -33,11 +33,11 @@ def _nonnegative(name, v):
 
 
 # ------------------------------------------------------------------------------------------------
-# FIELD.md 3.1: elastic catenary
+# docs/method.md, section 6.1: elastic catenary
 def catenary(l, L0, w, J):
     """Elastic catenary: a sheet alone under its own weight, pinned ends at equal height.
 
-    FIELD.md 3.1 (Irvine, Cable Structures, 1981, ch. 1). Span l (m), unstretched length L0 (m),
+    docs/method.md, section 6.1 (Irvine, Cable Structures, 1981, ch. 1). Span l (m), unstretched length L0 (m),
     weight w per unstretched length (N/m per metre of width, w = gamma t), axial stiffness J (N/m),
     linear law T = J eps with eps = current / initial length - 1. Lagrangian coordinate s in
     [0, L0] from the left support; horizontal tension H; end reaction V = w L0 / 2.
@@ -53,7 +53,7 @@ def catenary(l, L0, w, J):
     tension_mid = H and tension_support = sqrt(H^2 + V^2) (N/m); strain_mid, strain_support
     (= tension / J); and vectorised callables of s (m, array-like): x(s), y(s) (m; y is negative
     below the chord through the supports), tension(s) = sqrt(H^2 + (w s - V)^2), strain(s).
-    Check (FIELD.md): l = L0 = 10, w = 100, J = 1e5: H = 1586.2, sag = 0.7819, strain 1.586 %
+    Check (docs/method.md, section 6.1): l = L0 = 10, w = 100, J = 1e5: H = 1586.2, sag = 0.7819, strain 1.586 %
     mid-span, 1.663 % at the supports.
     """
     for name, v in (("l", l), ("L0", L0), ("w", w), ("J", J)):
@@ -92,11 +92,11 @@ def catenary(l, L0, w, J):
 
 
 # ------------------------------------------------------------------------------------------------
-# FIELD.md 3.2: pull-out of an anchored sheet
+# docs/method.md, section 6.2: pull-out of an anchored sheet
 def pullout(P, sigma_n, mu_t, mu_b, J, L):
     """Pull-out of an anchored sheet from rigid soil with a rigid-plastic Coulomb interface.
 
-    FIELD.md 3.2. Sheet of anchored length L (m) under normal stress sigma_n (Pa), friction
+    docs/method.md, section 6.2. Sheet of anchored length L (m) under normal stress sigma_n (Pa), friction
     coefficients mu_t above and mu_b below, axial stiffness J (N/m), pulled at its end (x = 0) by
     P (N/m) at or below the capacity (mu_t + mu_b) sigma_n L. With m = (mu_t + mu_b) sigma_n
     (shear per metre of sheet, N/m^2), the interface slips (at full friction) over the mobilised
@@ -138,9 +138,9 @@ def pullout(P, sigma_n, mu_t, mu_b, J, L):
 
 
 # ------------------------------------------------------------------------------------------------
-# FIELD.md 3.4 / REFERENCE.md 1.3: Terzaghi arching over a long void
+# docs/method.md, sections 6.4 and 1.3: Terzaghi arching over a long void
 def terzaghi_arching_ktan(gamma, B, H, ktan, c=0.0, q=0.0):
-    """Terzaghi's arching pressure with the product K tan(phi) given directly (FIELD.md 3.4).
+    """Terzaghi's arching pressure with the product K tan(phi) given directly (docs/method.md, section 6.4).
 
         sigma_v = (gamma B / 2 - c) / (K tan phi) (1 - exp(-2 K tan phi H / B))
                   + q exp(-2 K tan phi H / B)
@@ -148,7 +148,7 @@ def terzaghi_arching_ktan(gamma, B, H, ktan, c=0.0, q=0.0):
     gamma unit weight (N/m^3), B void width (m), H cover height (m), ktan = K tan(phi) (-),
     c cohesion (Pa), q surcharge (Pa). Returns the vertical stress on the void (Pa). ktan = 0 is
     the no-arching limit gamma H - 2 c H / B + q (continuous). A bracket, not an exact answer
-    (FIELD.md 3.4: trapdoor tests give a K unlike the textbook value).
+    (docs/method.md, section 6.4: trapdoor tests give a K unlike the textbook value).
     """
     _nonnegative("gamma", gamma)
     _positive("B", B)
@@ -164,7 +164,7 @@ def terzaghi_arching_ktan(gamma, B, H, ktan, c=0.0, q=0.0):
 def terzaghi_arching(gamma, B, H, K, phi_deg, c=0.0, q=0.0):
     """Terzaghi's arching pressure on a long void (trapdoor) of width B under cover H.
 
-    FIELD.md 3.4: lateral earth pressure ratio K, soil friction phi_deg (degrees), cohesion c (Pa),
+    docs/method.md, section 6.4: lateral earth pressure ratio K, soil friction phi_deg (degrees), cohesion c (Pa),
     surcharge q (Pa), unit weight gamma (N/m^3). Returns sigma_v (Pa); see terzaghi_arching_ktan.
     """
     _nonnegative("K", K)
@@ -172,28 +172,28 @@ def terzaghi_arching(gamma, B, H, K, phi_deg, c=0.0, q=0.0):
 
 
 def arching_pressure_paper(gamma, b, H, q=0.0):
-    """The seed paper's eq. (21), sign corrected (REFERENCE.md 1.3): Terzaghi with
+    """The seed paper's eq. (21), sign corrected (docs/method.md, section 1.3): Terzaghi with
     K tan(phi) = 0.25, B = b and c = 0 (Giroud et al. 1990's choice):
 
         p = 2 gamma b (1 - exp(-0.5 H / b)) + q exp(-0.5 H / b)   (Pa)
 
-    Check (REFERENCE.md 1.3, load II): gamma = 1.5e9, b = 6e-3, H = 8e-3: p = 8.758e6 Pa.
+    Check (docs/method.md, section 1.3, load II): gamma = 1.5e9, b = 6e-3, H = 8e-3: p = 8.758e6 Pa.
     """
     return terzaghi_arching_ktan(gamma, b, H, 0.25, 0.0, q)
 
 
 # ------------------------------------------------------------------------------------------------
-# REFERENCE.md 1.3 / FIELD.md 3.5: Giroud's tensioned membrane over a void
+# docs/method.md, sections 1.3 and 6.5: Giroud's tensioned membrane over a void
 def giroud_omega(y, b):
     """Tension factor Omega = (1/4) (2y/b + b/(2y)) of a circular arc of chord b and sag y
-    (REFERENCE.md 1.3; Giroud et al. 1990). The arc's radius is b Omega, so T = p b Omega."""
+    (docs/method.md, section 1.3; Giroud et al. 1990). The arc's radius is b Omega, so T = p b Omega."""
     _positive("y", y)
     _positive("b", b)
     return 0.25 * (2.0 * y / b + b / (2.0 * y))
 
 
 def giroud_strain(y, b):
-    """Strain of the arc (arc length / chord - 1), REFERENCE.md 1.3:
+    """Strain of the arc (arc length / chord - 1), docs/method.md, section 1.3:
 
         eps = 2 Omega asin(1/(2 Omega)) - 1          (y/b <= 0.5)
         eps = 2 Omega (pi - asin(1/(2 Omega))) - 1   (y/b >  0.5)
@@ -206,7 +206,7 @@ def giroud_strain(y, b):
 
 
 def giroud_paper_form(p, b, y):
-    """The paper's use of Giroud's solution (REFERENCE.md 1.3): a given sag y (m) plugged into the
+    """The paper's use of Giroud's solution (docs/method.md, section 1.3): a given sag y (m) plugged into the
     geometry, pressure p (Pa), void width b (m). Returns dict(y, Omega, eps, T) with
     T = p b Omega (N/m); stress is T / t. Stress and strain are not linked by a modulus here.
     Check: load II (p = 8.758e6, b = 6e-3), y = 2e-3: Omega = 0.5417, eps = 27.40 %,
@@ -217,7 +217,7 @@ def giroud_paper_form(p, b, y):
 
 
 def giroud_self_consistent(p, b, J):
-    """Self-consistent Giroud membrane: close REFERENCE.md 1.3 with T = J eps and solve
+    """Self-consistent Giroud membrane: close docs/method.md, section 1.3 with T = J eps and solve
 
         p b Omega(y) = J eps(y)
 
@@ -228,7 +228,7 @@ def giroud_self_consistent(p, b, J):
     sheet cannot carry the load). brentq on theta; y = (b/2) tan(theta/2).
 
     Returns dict(y, eps, T, Omega, theta): T = p b Omega = J eps (N/m); stress is T / t.
-    Check (REFERENCE.md 1.3): p = 8.758e6 (load II), b = 6e-3, J = 0.207e9 * 1e-3:
+    Check (docs/method.md, section 1.3): p = 8.758e6 (load II), b = 6e-3, J = 0.207e9 * 1e-3:
     y = 1.498e-3 m, eps = 15.9 %, T / t = 32.9 MPa (t = 1e-3); load I (gamma 7.5e8):
     y = 1.149e-3, eps = 9.5 %, 19.7 MPa.
     """
@@ -252,10 +252,10 @@ def giroud_self_consistent(p, b, J):
 
 
 # ------------------------------------------------------------------------------------------------
-# FIELD.md 3.3: veneer stability
+# docs/method.md, section 6.3: veneer stability
 def veneer_infinite(beta_deg, delta_deg, g=9.81):
     """Cohesionless cover on an infinite slope of angle beta_deg sliding on an interface of
-    friction angle delta_deg (FIELD.md 3.3; REFERENCE.md 2.5 for the block):
+    friction angle delta_deg (docs/method.md, section 6.3; docs/method.md, section 2.5 for the block):
 
         FS = tan(delta) / tan(beta)
         when it slides (FS < 1): a = g (sin beta - tan delta cos beta)
@@ -274,7 +274,7 @@ def veneer_infinite(beta_deg, delta_deg, g=9.81):
 
 def koerner_soong(gamma, h, L, beta_deg, phi_deg, delta_deg):
     """Koerner and Soong (1998) two-wedge veneer analysis, cohesion and adhesion zero
-    (FIELD.md 3.3). gamma unit weight (N/m^3), h cover thickness (m, perpendicular to the slope),
+    (docs/method.md, section 6.3). gamma unit weight (N/m^3), h cover thickness (m, perpendicular to the slope),
     L slope length (m, along the slope), beta slope angle, phi soil friction, delta interface
     friction (degrees):
 
@@ -310,7 +310,7 @@ def koerner_soong(gamma, h, L, beta_deg, phi_deg, delta_deg):
 
 
 def koerner_soong_fs(gamma, h, L, beta_deg, phi_deg, delta_deg):
-    """Factor of safety of koerner_soong (FIELD.md 3.3, cohesion and adhesion zero)."""
+    """Factor of safety of koerner_soong (docs/method.md, section 6.3, cohesion and adhesion zero)."""
     return koerner_soong(gamma, h, L, beta_deg, phi_deg, delta_deg)["FS"]
 
 
@@ -326,7 +326,7 @@ def uniaxial_strain_shrinkage(e, H, nu, isotropic=True):
     Derivation (isotropic): sigma_yy = 0 at the free top and everywhere (no body force);
     lateral strain zero gives sigma_xx = sigma_zz = E e / (1 - nu) (tension), and
     eps_yy = -e - 2 nu sigma_xx / E = -e (1 + nu) / (1 - nu). Independent of E. Small strain;
-    superposes on the self-weight settlement gamma H^2 / (2 M) (REFERENCE.md 2.2).
+    superposes on the self-weight settlement gamma H^2 / (2 M) (docs/method.md, section 2.2).
     """
     _positive("H", H)
     if isotropic:
@@ -337,7 +337,7 @@ def uniaxial_strain_shrinkage(e, H, nu, isotropic=True):
 
 
 # ------------------------------------------------------------------------------------------------
-# The bar (REFERENCE.md 2.1) at large stretch: compressible neo-Hookean (elastic.hpp,
+# The bar (docs/method.md, section 2.1) at large stretch: compressible neo-Hookean (elastic.hpp,
 # sigma = (mu (B - I) + lambda ln J I) / J), plane strain, dead load t per reference area on the
 # end, free top: a homogeneous state F = diag(l1, l2, 1) with
 #   sigma_yy = 0:           mu (l2^2 - 1) + lambda ln(l1 l2) = 0,
@@ -372,7 +372,7 @@ def _self_check():
         print(f"  {name:44s} {got:.6g}  (want {want:.6g} +- {tol:.2g}) {'ok' if ok else 'FAIL'}")
         assert ok, name
 
-    print("catenary (FIELD.md 3.1): l = L0 = 10 m, w = 100 N/m^2, J = 1e5 N/m")
+    print("catenary (docs/method.md, section 6.1): l = L0 = 10 m, w = 100 N/m^2, J = 1e5 N/m")
     cat = catenary(10.0, 10.0, 100.0, 1e5)
     close("H (N/m)", cat["H"], 1586.2, 0.05)
     close("sag (m)", cat["sag"], 0.7819, 5e-5)
@@ -387,7 +387,7 @@ def _self_check():
     close("max |stretch - T/J| (finite diff.)",
           float(np.max(np.abs(ds - cat["strain"](0.5 * (s[1:] + s[:-1]))))), 0.0, 1e-8)
 
-    print("pull-out (FIELD.md 3.2): P = 5 kN/m, sigma_n = 20 kPa, mu = 0.3 + 0.4, J = 1e6, L = 2")
+    print("pull-out (docs/method.md, section 6.2): P = 5 kN/m, sigma_n = 20 kPa, mu = 0.3 + 0.4, J = 1e6, L = 2")
     po = pullout(5e3, 20e3, 0.3, 0.4, 1e6, 2.0)
     close("x_a (m)", po["x_a"], 5e3 / 14e3, 1e-15)
     x = np.linspace(0.0, 2.0, 200001)
@@ -395,7 +395,7 @@ def _self_check():
     close("u0 vs integral of T/J (m)", po["u0"], u0_num, 1e-9)
     close("T(0) (N/m)", float(po["tension"](0.0)), 5e3, 0.0)
 
-    print("arching (FIELD.md 3.4 = REFERENCE.md 1.3 with K tan phi = 0.25)")
+    print("arching (docs/method.md 6.4 = 1.3 with K tan phi = 0.25)")
     pII = arching_pressure_paper(1.5e9, 6e-3, 8e-3)
     pI = arching_pressure_paper(7.5e8, 6e-3, 8e-3)
     close("p load II (MPa)", pII / 1e6, 8.758, 5e-4)
@@ -405,7 +405,7 @@ def _self_check():
     close("no arching limit: gamma H + q (Pa)", terzaghi_arching(2e4, 1.0, 3.0, 0.0, 30.0, 0.0,
                                                                  1e3), 6.1e4, 1e-9)
 
-    print("Giroud (REFERENCE.md 1.3), b = 6 mm, t = 1 mm, E = 0.207 GPa")
+    print("Giroud (docs/method.md, section 1.3), b = 6 mm, t = 1 mm, E = 0.207 GPa")
     t = 1e-3
     pf = giroud_paper_form(pII, 6e-3, 2e-3)
     close("paper form y = 2 mm: Omega", pf["Omega"], 0.5417, 5e-5)
@@ -422,9 +422,9 @@ def _self_check():
     close("self-consistent I: eps (%)", 100 * gI["eps"], 9.5, 0.05)
     close("self-consistent I: sigma (MPa)", gI["T"] / t / 1e6, 19.7, 0.05)
 
-    print("veneer (FIELD.md 3.3)")
+    print("veneer (docs/method.md, section 6.3)")
     v = veneer_infinite(30.0, math.degrees(math.atan(0.3)))
-    close("block mu = 0.3, 30 deg: a (m/s^2)", v["a"], 2.356, 5e-4)  # REFERENCE.md 2.5
+    close("block mu = 0.3, 30 deg: a (m/s^2)", v["a"], 2.356, 5e-4)  # docs/method.md, section 2.5
     close("FS = 0.3 / tan 30", v["FS"], 0.3 / math.tan(math.radians(30.0)), 1e-15)
     assert veneer_infinite(20.0, 25.0)["a"] == 0.0
     ks = koerner_soong_fs(18e3, 0.3, 30.0, 18.4, 30.0, 22.0)

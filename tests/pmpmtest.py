@@ -9,7 +9,7 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
            OMPI_MCA_rmaps_base_oversubscribe="1")
 
 
-# pmpm's exit codes (README: exit codes)
+# pmpm's exit codes (docs/outputs.md, exit codes)
 EXIT_OK, EXIT_BAD_INPUT, EXIT_FAILED, EXIT_NOT_CONVERGED, EXIT_INCONCLUSIVE = 0, 1, 2, 3, 4
 
 

@@ -1,9 +1,9 @@
-"""The elastic catenary (FIELD.md 3.1): one membrane chain alone, pinned at both ends.
+"""The elastic catenary (docs/method.md, section 6.1): one membrane chain alone, pinned at both ends.
 
 usage: test_catenary.py EXE NP OUTDIR [pmpm options for every run]
 Checked against the closed form computed here, independently of the scene (closed_forms.py):
 sag, mid-span and support strain, mid-span tension within 1 % (the issue's bound), for
-  - FIELD.md's check case (l = L0 = 10 m, w = 100 N/m^2, J = 1e5 N/m, strain 1.6 %) at
+  - the check case of docs/method.md, section 6.1 (l = L0 = 10 m, w = 100 N/m^2, J = 1e5 N/m, strain 1.6 %) at
     h = 0.5 and 0.25 m (20 and 40 cells over the span): mid-span strain and tension within 0.21 %
     and 0.051 %, sag and support strain within 1e-4; at h = 1 m (10 cells) the mid-span strain
     is 0.95 % off (bound 1.5 %): the error falls as h^2 (4.4x, then 4.2x per halving);

@@ -1,4 +1,4 @@
-"""Column under self-weight against the exact solutions (REFERENCE.md 2.2).
+"""Column under self-weight against the exact solutions (docs/method.md, section 2.2).
 
 usage: test_column.py EXE NP OUTDIR
 Small strain, PMPM, 32 cells over the height: the issue's bound is 2 % L2 stress error (measured

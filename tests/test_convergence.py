@@ -1,6 +1,6 @@
 """Column mesh convergence: PMPM's L2 stress error must fall >= 1.7x per halving of h over three
 refinements (8, 16, 32, 64 cells over the height); standard MPM is reported beside it.
-Expected first order for GIMP-type shapes (REFERENCE.md 2.2); measured 2.02, 2.03, 2.07.
+Expected first order for GIMP-type shapes (docs/method.md, section 2.2); measured 2.02, 2.03, 2.07.
 
 usage: test_convergence.py EXE NP OUTDIR
 """

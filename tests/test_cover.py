@@ -18,7 +18,7 @@ usage: test_cover.py EXE NP OUTDIR
    converges to -tol 1e-5.
 2. A void under a cover (tests/cover_void.opts: 1 m of Drucker-Prager soil, phi 35 deg,
    c 1 kPa, on the sheet; a void 1 m wide and 1 m tall opens under it). The pressure the soil
-   leaves on the sheet over the void lies in Terzaghi's bracket (FIELD.md 3.4, with the soil's
+   leaves on the sheet over the void lies in Terzaghi's bracket (docs/method.md, section 6.4, with the soil's
    cohesion): above the K = 1 value and below the K = Ka one (trapdoor tests fall between; a
    5 % margin on each side for the estimate's crudeness); the sheet sags and stretches (peak
    strain between 0.1 % and Giroud's self-consistent value, which assumes the full arching load on

@@ -1,12 +1,12 @@
 """Veneer on the finite slope of the cover scene (issue 9): where the cover starts to slide on the
-sheet, beside Koerner and Soong's two-wedge factor of safety (FIELD.md 3.3).
+sheet, beside Koerner and Soong's two-wedge factor of safety (docs/method.md, section 6.3).
 
 usage: test_cover_veneer.py EXE NP OUTDIR
 options/cover_slope.opts, stage 0 only (the veneer under its own weight), h = 0.5 m: a 0.57 m
 (normal) cover on 30 m of 3H:1V slope with its toe on level ground; the sheet's lower face held
 (delta 40 deg on the waste), its upper face at delta. The cover is made cohesionless
 (-mat_soil_cohesion 0) because Koerner and Soong's closed form has no cohesion: with the shipped
-2 kPa the cover holds down to 14.3 deg (BENCHMARKS.md) and the comparison would measure c.
+2 kPa the cover holds down to 14.3 deg (docs/benchmarks/cover_veneer.md) and the comparison would measure c.
 The test runs without F-bar (-fbar 0; the example turns it on): cohesionless Drucker-Prager has no
 strength at zero confinement, and with F-bar the cover's surface row flows (apex returns, plastic
 strain 0.34) so no stage reaches equilibrium even at 18.2 deg, where the sheet slips 8 mm and the

@@ -1,4 +1,4 @@
-"""The strip footing (options/footing.opts, REFERENCE.md 2.6): Prandtl's bearing capacity with F-bar,
+"""The strip footing (options/footing.opts, docs/method.md, section 2.6): Prandtl's bearing capacity with F-bar,
 and the locked overshoot without it; the c-phi footing (options/footing_cphi.opts) within 10 % of
 Prandtl-Reissner's with F-bar and the cell pressure.
 

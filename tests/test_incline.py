@@ -1,4 +1,4 @@
-"""Block on an incline (REFERENCE.md 2.5), the interface verified on its own.
+"""Block on an incline (docs/method.md, section 2.5), the interface verified on its own.
 
 usage: test_incline.py EXE NP OUTDIR
 theta = 30 deg, g = 9.81: free slip a = 4.905, mu = 0.3 slides with a = 2.356 m/s^2, mu = 0.7 sticks.

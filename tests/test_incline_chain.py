@@ -18,7 +18,7 @@ Measured (1 rank; 2 ranks agree to the digits shown), h = 0.02 m:
   mu = 0 within -0.037 %, mu = 0.3 within -0.041 %, mu = 0.7 sticks (0.15 % of g sin theta),
   mu = 10 against bonded 0.11 mm, mu = 0.3 at h = 0.01 m -1.04 % (110,000 steps: run by hand
   with --refine), mu = 0.5 (a = 0.657, near the sticking limit: -6.1 %; printed, as the
-  resolved interface's contact drifts there too, README).
+  resolved interface's contact drifts there too, docs/limitations.md).
 Two ranks repeat mu = 0.3 and the sticking case (the rest is rank-invariant, tested).
 Friction capacity: each sheet point's pressure times its length (contact_bodies' normal pass and
 chain_friction_capacity); with each node's own normal impulse the same run gave -2.1 % at mu = 0.3.

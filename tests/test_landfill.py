@@ -1,10 +1,9 @@
 """The landfill cover (paper Section 4) at a test-sized resolution, against the converged values.
 
 usage: test_landfill.py EXE NP OUTDIR
-Converged values (bonded, elastic, load II, h = 0.125 mm; README "Landfill results beside the
-paper's"): settlement at X = 15 mm 2.958 mm, peak membrane strain 1.76 %; load I / load II
+Converged values (bonded, elastic, load II, h = 0.125 mm; docs/landfill.md): settlement at X = 15 mm 2.958 mm, peak membrane strain 1.76 %; load I / load II
 settlement ratio 0.505. The test mesh (h = 1 mm) is within 1.0 % and 8 % of them (refinement table
-in README); the bounds are 3 % and 15 %. Giroud's self-consistent solution must match REFERENCE.md 1.3 to its printed digits.
+in docs/landfill.md); the bounds are 3 % and 15 %. Giroud's self-consistent solution must match docs/method.md, section 1.3 to its printed digits.
 """
 import sys
 from pmpmtest import Checks, run, summary

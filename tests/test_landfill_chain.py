@@ -2,7 +2,7 @@
 membrane, at the test mesh h = 0.5 mm, load II.
 
 usage: test_landfill_chain.py EXE NP OUTDIR
-The chain lies on top of the 1 mm membrane layer, which is given to the waste (README): the
+The chain lies on top of the 1 mm membrane layer, which is given to the waste (docs/landfill.md): the
 heights and loads are the paper's; the soft zone lies 1 mm below the sheet. Checked:
   - bonded, the chain's settlement and differential settlement agree with the resolved membrane's
     within 3 % (measured 1.9 % and 2.1 %: the chain sits 1 mm higher, over 1 mm more waste);
@@ -15,7 +15,7 @@ heights and loads are the paper's; the soft zone lies 1 mm below the sheet. Chec
     no negative tension in the profile), and the settlement is unchanged (< 0.1 %).
 The peak strain differs from the resolved membrane's by design (0.98 % against 1.76 %): the
 resolved band's axial strain includes its Poisson expansion under 12 MPa of overburden (nu = 0.4)
-and lies 1 mm closer to the soft zone; README compares the two at h = 0.25 mm.
+and lies 1 mm closer to the soft zone; docs/landfill.md compares the two at h = 0.25 mm.
 """
 import sys
 import numpy as np

@@ -28,7 +28,7 @@ the cell-crossing noise is the spread of sigma_xx F_yy / t over the particles (0
   sigma J A0 against the traction t A0 = sigma F_yy A0, off by F_xx, and the leading node holds
   a sliver of mass. cpGIMP (-shape cpgimp, half-size stretched with the deformation) is the
   cure: tests/test_cpgimp.py runs this bar at -ppc 4 within 1 % of the exact solution; at -ppc 2,
-  as here, cpgimp stops as well (README, Known limitations), so REQUIRE_BAR_60 stays False.
+  as here, cpgimp stops as well (docs/limitations.md), so REQUIRE_BAR_60 stays False.
 """
 import os
 import re

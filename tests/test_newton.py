@@ -53,7 +53,7 @@ c.le("column vs relaxation: positions / settlement", dx / settle, 1e-3)
 c.le("column vs relaxation: stress (L2, relative)", ds, 1e-3)
 
 # the load-step error at 128 cells. The rate-form update reads the midpoint gradient of the step
-# (README "Implicit solver (Newton)"), second order in the step: one load step leaves a
+# (docs/newton.md), second order in the step: one load step leaves a
 # displacement error of 6.7e-6 (relaxation 5.9e-6; the step-start gradient, first order, left
 # 5.4e-4 with one step and 5.5e-5 with ten). Bound 2e-5, as for -newton_cell_fraction 0.001, which
 # sizes 96 steps from the first one's motion (0.095 cells per unit load; measured 4.9e-6). On 1
@@ -115,7 +115,7 @@ for shape, bounds in LAYER_BOUNDS.items():
 
 # the bonded landfill at test_landfill.py's mesh (h = 1 mm) and bounds against the converged
 # values (measured 0.87 % settlement, 8.5 % peak strain; relaxation 1.0 %, 8 %). Load I (the
-# cover's weight alone) as test_landfill.py: the settlement against the converged 1.494 mm (README;
+# cover's weight alone) as test_landfill.py: the settlement against the converged 1.494 mm (docs/landfill.md;
 # measured 0.57 %, relaxation 0.56 %, bound 3 %) and the load I / load II ratio against the
 # converged 0.505 (measured 0.5066, relaxation 0.5072; bound 0.004). 1 rank with the default MUMPS
 # LU; 2 ranks with GMRES + BoomerAMG to 1e-10 (a parallel MUMPS factorisation on shared cores costs

@@ -1,4 +1,4 @@
-"""The output contract of README "Outputs": summary keys, particles.h5 datasets and shapes, the
+"""The output contract of docs/outputs.md: summary keys, particles.h5 datasets and shapes, the
 XDMF beside it, the -output_every time series, and no temporary files left behind.
 
 usage: test_output.py EXE NP OUTDIR

@@ -1,4 +1,4 @@
-"""Pull-out of an anchored sheet between two stiff blocks (FIELD.md 3.2): the chain's Coulomb
+"""Pull-out of an anchored sheet between two stiff blocks (docs/method.md, section 6.2): the chain's Coulomb
 friction on both faces against the rigid-plastic closed form (closed_forms.pullout).
 
 usage: test_pullout.py EXE NP OUTDIR [pmpm options for every run]
@@ -8,7 +8,7 @@ kinetic damping. x is measured from the pulled point's initial position (the she
 inside the blocks; src/scenes/pullout.cpp says why).
 
 Below capacity, P = 5 kN/m, two cases: mu_t = mu_b = 0.25 (m = 10 kN/m^2, x_a = 0.5 m,
-u0 = 1.25 mm) and FIELD.md's mu_t = 0.3, mu_b = 0.4 (m = 14 kN/m^2, x_a = 0.357 m, u0 = 0.893 mm):
+u0 = 1.25 mm) and the mu_t of docs/method.md, section 6.2, = 0.3, mu_b = 0.4 (m = 14 kN/m^2, x_a = 0.357 m, u0 = 0.893 mm):
   - the tension profile of chain_membrane.csv against T(x) = max(P - m x, 0): RMS error / P
     <= 2 % (it carries the smear of the force's entry over about a cell);
   - the anchored length (base of the tension triangle, 2 sum T l0 / P) and the pulled point's

@@ -1,14 +1,14 @@
-"""The active trapdoor (options/trapdoor.opts, FIELD.md 3.4): the ground reaction curve falls to a
+"""The active trapdoor (options/trapdoor.opts, docs/method.md, section 6.4): the ground reaction curve falls to a
 minimum within a few per cent of B, inside the Terzaghi bracket, and stays near it.
 
 usage: test_trapdoor.py EXE NP OUTDIR
 H/B = 1 (B = H = 1 m), half model 2 m wide, h = B/8 (4 cells across the half-door), phi 30 deg,
 psi 0, c = 0, no F-bar, the door lowered at 1e-5 cells per step to 0.2, 0.5, 1, 2 and 3 % of B,
-each stage relaxed to -tol 1e-4. Terzaghi (FIELD.md 3.4, c = q = 0) over gamma H: K = 1 gives
+each stage relaxed to -tol 1e-4. Terzaghi (docs/method.md, section 6.4, c = q = 0) over gamma H: K = 1 gives
 0.5931, K = Ka = 1/3 gives 0.8300.
 
 Measured here (1 and 2 ranks agree to the 9 digits summary.json prints): 1, 0.579, 0.544, 0.534
-(the minimum, at 1 % B), 0.538, 0.546. Elsewhere (BENCHMARKS.md, "Active trapdoor"), H/B = 1:
+(the minimum, at 1 % B), 0.538, 0.546. Elsewhere (docs/benchmarks/trapdoor.md), H/B = 1:
   h = B/8:  rate 3e-5: minimum 0.555; with -fbar at 1e-5: 0.549 (at 3 % B, still falling slowly)
   h = B/16: rate 1e-4: 0.667; 3e-5: 0.591; 1e-5: 0.561; with -fbar at 3e-5: 0.610
 The minimum rises with refinement and with -fbar (linear cells' locked shear bands carry more
@@ -31,7 +31,7 @@ Asserted:
   - the minimum inside [0.85 Terzaghi(K = 1), Terzaghi(K = Ka)];
   - after the minimum the curve stays within 0.03 gamma H above it up to 3 % B (measured +0.012):
     the arch holds. A perfectly plastic soil has no peak strength to lose, so the recovery that
-    trapdoor tests on dense sand show (FIELD.md 3.4) is not expected here, and not asserted.
+    trapdoor tests on dense sand show (docs/method.md, section 6.4) is not expected here, and not asserted.
 """
 import math
 import sys

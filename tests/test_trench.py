@@ -22,7 +22,7 @@ across the trench), the load ramp and the step budget scaled with 1 / h (800 / 4
 
 Bounds and why:
 - Relaxation: the runs do not reach -tol 1e-4 (the unbalanced-force ratio plateaus at 0.05-0.15:
-  the anchorage slips by small steps and the c = 0 cover creeps; README of the scene's report).
+  the anchorage slips by small steps and the c = 0 cover creeps; docs/limitations.md).
   What is checked is that the span has settled: over the last quarter of the finest run the chord
   sag and the mid-span strain move by less than 1 % (measured 0.3 % and 0.2 %), the ratio is
   below 0.3, the sheet's free ends have not pulled out (< 1 mm; measured 0.11 mm) and the sheet

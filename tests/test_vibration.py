@@ -1,4 +1,4 @@
-"""Undamped vibrating bar, fixed-free (REFERENCE.md 2.4; options/bar_vibration.opts).
+"""Undamped vibrating bar, fixed-free (docs/method.md, section 2.4; options/bar_vibration.opts).
 
 usage: test_vibration.py EXE NP OUTDIR
 

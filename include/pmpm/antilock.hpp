@@ -2,9 +2,9 @@
 //
 // Linear cells with four particles each carry four volume constraints per cell when the flow is
 // isochoric (von Mises, Drucker-Prager at psi = 0); the mesh cannot deform without changing volume
-// and locks: collapse loads overshoot (the strip footing, REFERENCE.md 2.6) and a thin cover
-// layer bridges a void it should fall into. F-bar (de Souza Neto et al. 1996; for MPM, Coombs et
-// al. 2018) replaces each particle's volume change over the step by its cell's:
+// and locks: collapse loads overshoot (the strip footing, docs/method.md, section 2.6) and a thin
+// cover layer bridges a void it should fall into. F-bar (de Souza Neto et al. 1996; for MPM, Coombs
+// et al. 2018) replaces each particle's volume change over the step by its cell's:
 //
 //     dJ_bar = sum_p vol_p(new) / sum_p vol_p(old)    over the particles of one body in one cell
 //     dF_bar = (dJ_bar / dJ_p)^(1/2) dF_p             (2D: det scales with the square)
@@ -23,7 +23,7 @@
 // 2008, 15.3): the power is then exactly sum_p V_p s_p : D_p + p_bar sum_p V_p tr D_p, the
 // stress power of the averaged volume change. It is not the default: on the slope cover
 // (options/cover_slope.opts, psi = 0) it lets the thin cover creep at its surface and the
-// geostatic stage ends its 30,000 steps at a ratio of 1e-2 (README, Anti-locking).
+// geostatic stage ends its 30,000 steps at a ratio of 1e-2 (docs/anti-locking.md).
 #pragma once
 #include "pmpm/particles.hpp"
 #include <vector>

@@ -1,6 +1,6 @@
 // A membrane (geomembrane, geotextile) as a chain of material points: the seed paper's "single
 // layer of material points" (section 3.2) at any cell size. Its thickness t is a property, not a
-// resolved dimension (FIELD.md 1).
+// resolved dimension (docs/method.md, section 7.1).
 //
 // A chain is an ordered line of points from left to right (x increasing). Segment k joins points
 // k and k + 1; its engineering strain eps_k = l_k / l0_k - 1 gives the axial force per unit width

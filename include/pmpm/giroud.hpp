@@ -2,7 +2,7 @@
 // tensioned membrane spanning the void (Giroud, Bonaparte, Beech & Gross 1990, "Design of
 // soil layer-geosynthetic systems overlying voids", Geotextiles and Geomembranes 9:11-50).
 // This is the analytical solution the seed paper compares against in section 4, eqs. (21)-(24).
-// See /work/shared/reference/REFERENCE.md section 1.3 (corrected sign of eq. 21).
+// See docs/method.md, section 1.3 (corrected sign of eq. 21).
 //
 // Geometry: a long (plane-strain) void of width b under a membrane of thickness t, covered by
 // soil of height H and unit weight gamma, with surface load q. The membrane over the void is a
@@ -32,7 +32,8 @@ inline void require_nonnegative(double v, const char *what) {
 } // namespace detail
 
 // Pressure on the membrane over the void from Terzaghi trapdoor arching with K tan(phi) = 0.25
-// (Giroud et al. 1990), seed paper eq. (21) with its sign typo corrected (REFERENCE.md 1.3):
+// (Giroud et al. 1990), seed paper eq. (21) with its sign typo corrected (docs/method.md,
+// section 1.3):
 //   p = 2 gamma b (1 - exp(-0.5 H/b)) + q exp(-0.5 H/b)
 // The printed form has exp(+0.5 H/b) in the first term, which makes p negative.
 inline double arching_pressure(double gamma, double b, double H, double q) {
@@ -43,7 +44,8 @@ inline double arching_pressure(double gamma, double b, double H, double q) {
   return 2.0 * gamma * b * (1.0 - e) + q * e;
 }
 
-// Terzaghi's arching pressure on a long void (trapdoor) of width B under cover H (FIELD.md 3.4):
+// Terzaghi's arching pressure on a long void (trapdoor) of width B under cover H (docs/method.md,
+// section 6.4):
 //   sigma_v = (gamma B / 2 - c) / (K tan phi) (1 - exp(-2 K tan phi H / B))
 //             + q exp(-2 K tan phi H / B)
 // with ktan = K tan(phi) > 0 (K = 1 and K = Ka bracket what trapdoor tests show; Giroud's 0.25 is

@@ -1,4 +1,4 @@
-// Frictional interfaces at the geomembrane (seed paper section 3.2; REFERENCE.md 5).
+// Frictional interfaces at the geomembrane (seed paper section 3.2; docs/method.md, section 5).
 //
 // Particles with colour 1 form body 1 (the geomembrane); all others body 2. Where a scene has an
 // interface, body 1's mass, momentum, force and the colour sums behind the normals are summed on a

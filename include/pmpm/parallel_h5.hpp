@@ -2,7 +2,7 @@
 // dataset in a collective MPI-IO call, at the offset of the ranks before it. Nothing is gathered
 // on one rank, and nothing is copied: PETSc's VecView would create a chunked dataset whose fill
 // values HDF5 builds in a buffer as large as the chunk (up to the whole dataset, 32 B per
-// particle for the stress) and keeps in its free lists afterwards (BENCHMARKS.md, memory).
+// particle for the stress) and keeps in its free lists afterwards (docs/benchmarks/memory.md).
 #pragma once
 #include <hdf5.h>
 #include <petscsys.h>

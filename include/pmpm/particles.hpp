@@ -34,7 +34,7 @@ struct ParticleView {
 
 // A surface load on one particle. Few particles carry one (a loaded face's outermost row), so
 // the loads are a table every rank holds alike, in particle-id order, and a particle carries
-// only its entry's index: 4 bytes instead of 32 per particle (BENCHMARKS.md, memory).
+// only its entry's index: 4 bytes instead of 32 per particle (docs/benchmarks/memory.md).
 struct ParticleLoad {
   double traction[DIM]; // force on the particle's face (per unit thickness)
   double tface[DIM];    // initial offset from the centre to the loaded face's centre
@@ -60,7 +60,7 @@ struct ParticleInit {
 // The particles a scene generates, before they enter the swarm. A deque, not a vector: it never
 // reallocates while a scene fills it (a vector's doubling held up to 2 x 112 B per particle), and
 // ParticlesAdd frees it block by block as the swarm grows, so the two never coexist in full
-// (BENCHMARKS.md, memory per particle).
+// (docs/benchmarks/memory.md).
 using ParticleList = std::deque<ParticleInit>;
 
 struct Particles {

@@ -56,7 +56,7 @@ struct UGIMPShape {
   // c = min(b, 1) and e = max(b - 1, 0) (the part in the second cell) one expression covers
   // both cases, and a block inside one cell gets e = 0 and the same values bit for bit as the
   // branch (b > 1) it replaces, which at -ppc 2 was mispredicted for about half the particles
-  // (their blocks end on a cell face; BENCHMARKS.md, "A leaner explicit cycle").
+  // (their blocks end on a cell face; docs/benchmarks/lean_cycle.md).
   static void eval1d(double xi, double li, int &base, double w[NS], double dw[NS]) {
     const double lo = xi - li;
     base = static_cast<int>(std::floor(lo));

@@ -4,7 +4,7 @@
 // sum_i lambda_i (n_i . e_d)^2 over the principal stretches lambda_i and directions n_i). Under a
 // stretch the blocks grow with the body and keep tiling it, so the body's end, the traction face
 // and the leading node's mass move with the material; uGIMP's fixed blocks stop tiling past about
-// 40 % stretch (README, "cpGIMP: particle blocks that follow the deformation").
+// 40 % stretch (docs/cpgimp.md).
 //
 // Why V_dd and not F_dd (Wallstedt & Guilkey's diagonal): both are the same block when F is
 // diagonal (the bar, the column; measured equal there), but a rigid rotation by theta shrinks the

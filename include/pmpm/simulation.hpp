@@ -32,7 +32,7 @@ enum class FbarPressure { Particle = 0, Cell = 1 };
 inline constexpr const char *FbarPressureNames[] = {"particle", "cell", "FbarPressure",
                                                     "FBAR_PRESSURE_", nullptr};
 
-// Options every scene accepts (the interface contract in README.md).
+// Options every scene accepts (the interface contract in docs/user-guide.md).
 struct Settings {
   std::string scene;
   double h = 0;     // -cell_size
@@ -44,7 +44,7 @@ struct Settings {
   bool quiet = false;
   PetscInt output_every = 0;
   double tol = 1e-6;                  // -tol, unbalanced-force ratio for convergence
-  Damping damping = Damping::Kinetic; // BENCHMARKS.md: 0.38x the steps of local damping
+  Damping damping = Damping::Kinetic; // docs/benchmarks/run.md: 0.38x the steps of local damping
   double damping_alpha = 0.8;
   // -damping fire (relaxation.cpp): FIRE's mixing at a restart, its decay factor per step, and
   // the steps after a restart before it decays (Bitzek et al. 2006: 0.1, 0.99, 5)

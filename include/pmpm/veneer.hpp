@@ -1,7 +1,7 @@
-// Cover soil on a geomembrane on a slope (veneer stability), FIELD.md 3.3: the infinite-slope
-// factor of safety and Koerner and Soong's (1998) two-wedge factor of safety for a finite slope
-// with a passive toe wedge (cohesion and adhesion zero). Limit-equilibrium estimates, reported
-// beside the simulation. Plain functions, header-only; angles in radians.
+// Cover soil on a geomembrane on a slope (veneer stability), docs/method.md, section 6.3: the
+// infinite-slope factor of safety and Koerner and Soong's (1998) two-wedge factor of safety for a
+// finite slope with a passive toe wedge (cohesion and adhesion zero). Limit-equilibrium estimates,
+// reported beside the simulation. Plain functions, header-only; angles in radians.
 #pragma once
 #include <cmath>
 

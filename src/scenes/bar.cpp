@@ -1,9 +1,9 @@
 // The paper's Figure 2 bar: plane strain, x = 0 on rollers, y = 0 on rollers (the symmetry line
-// that pins u_y), traction t on the end x = L, no gravity. Static solution (REFERENCE.md 2.1):
-// sigma_xx = t, u_x = t (1 - nu^2) x / E, u_y = -nu (1 + nu) t y / E.
+// that pins u_y), traction t on the end x = L, no gravity. Static solution (docs/method.md,
+// section 2.1): sigma_xx = t, u_x = t (1 - nu^2) x / E, u_y = -nu (1 + nu) t y / E.
 //
-// Vibrating bar (REFERENCE.md 2.4), with -bar_initial_velocity v0 (and -bar_traction 0, nu = 0,
-// -bar_top_roller, -dynamic): fixed-free, v(x, 0) = v0 sin(beta x), beta = pi / (2L); exact
+// Vibrating bar (docs/method.md, section 2.4), with -bar_initial_velocity v0 (and -bar_traction 0,
+// nu = 0, -bar_top_roller, -dynamic): fixed-free, v(x, 0) = v0 sin(beta x), beta = pi / (2L); exact
 // v = v0 cos(omega t) sin(beta x), omega = beta sqrt(E / rho), centre-of-mass velocity
 // (2 v0 / pi) cos(omega t), energy rho v0^2 L B / 4 constant. The period is measured from the
 // zero crossings of the centre-of-mass velocity; the energy is kinetic + elastic

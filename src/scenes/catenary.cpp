@@ -1,5 +1,5 @@
-// The elastic catenary (FIELD.md 3.1): one membrane chain alone, pinned at both ends at equal
-// height, initially straight and unstressed, sagging under its own weight w = gamma t. The
+// The elastic catenary (docs/method.md, section 6.1): one membrane chain alone, pinned at both ends
+// at equal height, initially straight and unstressed, sagging under its own weight w = gamma t. The
 // closed form (Irvine 1981, ch. 1) for span l = L0, stiffness J:
 //   H L0 / J + (2 H / w) asinh(w L0 / (2 H)) = l,
 //   sag = w L0^2 / (8 J) + (H / w) (sqrt(1 + (V / H)^2) - 1),  V = w L0 / 2,

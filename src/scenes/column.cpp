@@ -1,5 +1,5 @@
-// A column under self-weight (REFERENCE.md 2.2): height H, base fixed, sides on rollers, top free
-// or loaded by a surcharge q (-bc_ymax_traction 0,-q), which adds -q to the stress below.
+// A column under self-weight (docs/method.md, section 2.2): height H, base fixed, sides on rollers,
+// top free or loaded by a surcharge q (-bc_ymax_traction 0,-q), which adds -q to the stress below.
 // Uniaxial strain, so the Cauchy stress at initial height Y is exactly -gamma (H - Y) at any
 // deformation (the weight above is conserved). Each model's law then gives J(Y), and
 // y(Y) = int_0^Y J dY:

@@ -1,4 +1,5 @@
-// A landfill cover at field scale, described in an options file (FIELD.md): waste below a surface
+// A landfill cover at field scale (docs/method.md, section 7), described in an options file:
+// waste below a surface
 // profile (a top deck at a grade, or a side slope with its toe and crest, or any polyline), cover
 // layers over it from the top down, each a thickness (varying linearly across the width if asked)
 // and a material, geomembranes as chains (chain.hpp) at the base of named layers, and stages
@@ -192,7 +193,7 @@ class CoverScene final : public Scene {
     char *lnames[kMaxList], *mnames[kMaxList], wbuf[64];
     PetscFunctionBeginUser;
     PetscCall(PetscStrncpy(wbuf, waste_mat_.c_str(), sizeof(wbuf)));
-    PetscOptionsBegin(sim.comm, "cover_", "Field-scale landfill cover (FIELD.md)", nullptr);
+    PetscOptionsBegin(sim.comm, "cover_", "Field-scale landfill cover (docs/cover.md)", nullptr);
     PetscCall(PmpmOptionsReal("-width", "Width of the model W (m)", nullptr, W_, &W_, nullptr));
     PetscCall(PmpmOptionsReal("-waste_height",
                               "Waste thickness at x = 0 (m; the deck, without a side slope)",
@@ -257,7 +258,7 @@ class CoverScene final : public Scene {
                               nullptr, void_depth_, &void_depth_, nullptr));
     PetscCall(PmpmOptionsReal("-allowable_strain",
                               "Allowable membrane strain for the PASS / EXCEEDED verdict "
-                              "(design limits for local strain are a few per cent, FIELD.md 2)",
+                              "(local design limits: a few per cent, docs/method.md section 7.2)",
                               nullptr, allowable_, &allowable_, nullptr));
     PetscCall(PmpmOptionsReal("-strain_gauge",
                               "Gauge length (m) over which the membrane's peak strain and tension "

@@ -1,6 +1,6 @@
-// A smooth strip footing on weightless soil (REFERENCE.md 2.6), loaded in pressure stages: the
-// bearing capacity is bracketed between the largest pressure at which the soil finds equilibrium
-// and the first at which it does not.
+// A smooth strip footing on weightless soil (docs/method.md, section 2.6), loaded in pressure
+// stages: the bearing capacity is bracketed between the largest pressure at which the soil finds
+// equilibrium and the first at which it does not.
 //
 // Half the problem by symmetry: soil of half-width W and depth D, x = 0 the footing's centre line
 // (roller), far side on rollers, base fixed. The footing is a uniform pressure q on the surface

@@ -1,7 +1,7 @@
-// A block on an incline (REFERENCE.md 2.5): the interface verified on its own. The plane stays
-// horizontal and gravity is rotated by theta: g = |g| (sin theta, -cos theta). The block (colour
-// 0) rests on a base slab (colour 1) whose bottom is fixed. Coulomb friction mu (-interface_mu_top,
-// the base's upper face):
+// A block on an incline (docs/method.md, section 2.5): the interface verified on its own. The plane
+// stays horizontal and gravity is rotated by theta: g = |g| (sin theta, -cos theta). The block
+// (colour 0) rests on a base slab (colour 1) whose bottom is fixed. Coulomb friction mu
+// (-interface_mu_top, the base's upper face):
 //   tan theta <= mu: the block sticks (a = 0);  otherwise a = g (sin theta - mu cos theta).
 // Undamped dynamics; the block's acceleration is the least-squares slope of its centre-of-mass
 // velocity over the second half of the run (after the start-up transient).

@@ -1,8 +1,9 @@
-// The landfill cover of the seed paper, Section 4 (Figure 6, Table I; REFERENCE.md 1.1-1.4):
-// waste 30 mm, geomembrane 1 mm, cover soil 8 mm, 30 mm wide, a soft 6 mm-diameter zone just
-// below the membrane at X = 15 mm; base fixed, sides on rollers, plane strain; unit weights of
-// Table I applied as body forces. The membrane can be the regular particle fill, N layers of
-// particles across its thickness (N = 1 is the paper's single layer), or a membrane chain
+// The landfill cover of the seed paper, Section 4 (Figure 6, Table I; docs/method.md,
+// sections 1.1-1.4): waste 30 mm, geomembrane 1 mm, cover soil 8 mm, 30 mm wide, a soft 6
+// mm-diameter zone just below the membrane at X = 15 mm; base fixed, sides on rollers, plane
+// strain; unit weights of Table I applied as body forces. The membrane can be the regular particle
+// fill, N layers of particles across its thickness (N = 1 is the paper's single layer), or a
+// membrane chain
 // (-landfill_membrane_chain, chain.hpp): a line of points at the top of the membrane layer
 // (y = 31 mm) whose 1 mm of thickness is a property. The layer it leaves is given to the waste
 // (the closest material: E 131.7 against 207 MPa, a weight of 2e3 against 9.6e3 N/m^2 under

@@ -7,7 +7,7 @@
 //   sigma_yy(Y) = -gamma_t Ht - gamma_b (Hb - Y)        0 <= Y <= Hb
 // and each layer's law gives J(Y) (linear elastic, Jaumann rate: sigma = M ln J; neo-Hookean:
 // sigma = (lambda ln J + mu (J^2 - 1)) / J), u_y(Y) = int_0^Y (J - 1) dY, piecewise per layer
-// (REFERENCE.md 2.2 for one layer). Small strain: u_y = int sigma / M.
+// (docs/method.md, section 2.2 for one layer). Small strain: u_y = int sigma / M.
 #include "pmpm/options.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"

@@ -1,6 +1,6 @@
-// Pull-out of an anchored sheet (FIELD.md 3.2): a membrane chain between two stiff elastic
-// blocks under normal stress p (a traction on the upper block's top face), pulled at its right
-// end by a dead load P (N/m, the chain's end force), both ramped together over -ramp_steps.
+// Pull-out of an anchored sheet (docs/method.md, section 6.2): a membrane chain between two stiff
+// elastic blocks under normal stress p (a traction on the upper block's top face), pulled at its
+// right end by a dead load P (N/m, the chain's end force), both ramped together over -ramp_steps.
 // Friction mu_t on the sheet's upper face, mu_b on its lower face (-interface_mu_top/_bottom or
 // -chain_membrane_mu_top/_bottom). With m = (mu_t + mu_b) p, below the capacity m L:
 //   T(x) = P - m x  for x < x_a = P / m,  0 beyond;   end displacement u0 = P^2 / (2 m J).

@@ -1,7 +1,7 @@
-// The active trapdoor (FIELD.md 3.4): a layer of cohesionless Drucker-Prager soil of height H on a
-// rough rigid base in which a strip of width B (the door) is lowered slowly. Its ground reaction
-// curve, the pressure on the door over the initial overburden gamma H against the door's
-// displacement over B, falls as the soil arches over the door and is read beside Terzaghi's
+// The active trapdoor (docs/method.md, section 6.4): a layer of cohesionless Drucker-Prager soil of
+// height H on a rough rigid base in which a strip of width B (the door) is lowered slowly. Its
+// ground reaction curve, the pressure on the door over the initial overburden gamma H against the
+// door's displacement over B, falls as the soil arches over the door and is read beside Terzaghi's
 // arching with K = 1 and K = Ka.
 //
 // Half the problem by symmetry: soil of half-width W from the door's centre line x = 0 (roller),
@@ -19,7 +19,7 @@
 // The soil follows the door on the grid: the door is a region of nodes at the door's velocity, not
 // a surface, so its top is resolved to a cell. For displacements below a cell (the minimum of the
 // curve) that is the base itself. The curve depends on the door's rate as well as on the cell:
-// a faster door drops soil onto itself and reads more pressure (README, "Active trapdoor").
+// a faster door drops soil onto itself and reads more pressure (docs/trapdoor.md).
 #include "pmpm/options.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
@@ -60,7 +60,8 @@ class TrapdoorScene final : public Scene {
       if (pv.key[k] % DIM == 1) pv.v[k] = -speed_ * pv.weight[k];
   }
 
-  // Terzaghi's arching pressure over gamma H for lateral stress ratio K (FIELD.md 3.4).
+  // Terzaghi's arching pressure over gamma H for lateral stress ratio K (docs/method.md,
+  // section 6.4).
   double terzaghi_ratio(const Simulation &sim, double K) const {
     const auto &dp = dynamic_cast<const DruckerPrager &>(*sim.mats[0].model).params();
     const double g = gamma(sim);

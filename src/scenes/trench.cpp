@@ -1,5 +1,5 @@
-// A geomembrane over an open trench under a cohesionless cover: Giroud's regime (FIELD.md 3.2,
-// 3.4, 3.5; REFERENCE.md 1.3).
+// A geomembrane over an open trench under a cohesionless cover: Giroud's regime (docs/method.md,
+// sections 6.2, 6.4, 6.5 and 1.3).
 //
 // Geometry (x to the right, y up; the grid starts -trench_surface_offset cells below y = 0):
 //   base   y < Hb, full width W, elastic ("base": stiff soil), base fixed, sides on rollers; an
@@ -32,9 +32,10 @@
 //   - the anchorage on each side: the edge tension T_e, the pull-in (the material length drawn
 //     over the void, and the horizontal displacement of the edge's material point), the
 //     stretched length (T falls to 5 % of T_e; and the triangle of the same area,
-//     2 int T+ dx / T_e), the mobilised shear T_e / that length, beside FIELD.md 3.2:
-//     x_a = T_e / m, m = (mu_t + mu_b) gamma H, u0 = T_e^2 / (2 m J);
-//   - Terzaghi arching (FIELD.md 3.4, c = 0) with K = 1, K = Ka of the cover's phi, and
+//     2 int T+ dx / T_e), the mobilised shear T_e / that length, beside docs/method.md,
+//     section 6.2: x_a = T_e / m, m = (mu_t + mu_b) gamma H, u0 = T_e^2 / (2 m J);
+//   - Terzaghi arching (docs/method.md, section 6.4, c = 0) with K = 1, K = Ka of the cover's phi,
+//   and
 //     K tan phi = 0.25 (Giroud's choice);
 //   - Giroud's self-consistent sag and strain (giroud.hpp, with E t = J, the chain's axial
 //     stiffness) for (a) the full overburden gamma H, (b) the arc pressure, the chain's p_top
@@ -483,7 +484,7 @@ public:
     // closed forms
     const double rad = giroud::pi / 180, tphi = std::tan(phi_ * rad), sphi = std::sin(phi_ * rad);
     const double Ka = (1 - sphi) / (1 + sphi);
-    auto terzaghi = [&](double ktan) { // FIELD.md 3.4, c = 0, q = 0
+    auto terzaghi = [&](double ktan) { // docs/method.md, section 6.4, c = 0, q = 0
       return 0.5 * gamma * B / ktan * (-std::expm1(-2 * ktan * H_ / B));
     };
     const double p_K1 = terzaghi(tphi), p_Ka = terzaghi(Ka * tphi), p_025 = terzaghi(0.25);

@@ -1,7 +1,7 @@
 // Unit test of the closed-form geomembrane-over-void solution (include/pmpm/giroud.hpp):
 // Terzaghi arching + tensioned membrane (Giroud et al. 1990), seed paper eqs. (21)-(24).
-// Expected values from REFERENCE.md 1.3. Each tolerance is half a unit in the last printed
-// digit of the reference value, so the check is "rounds to the printed number".
+// Expected values from docs/method.md, section 1.3. Each tolerance is half a unit in the last
+// printed digit of the reference value, so the check is "rounds to the printed number".
 #include "check.hpp"
 #include "pmpm/giroud.hpp"
 #include <cmath>
@@ -11,7 +11,8 @@
 namespace g = pmpm::giroud;
 
 int main() {
-  // Geometry and materials of the seed paper, section 4 / Table I (REFERENCE.md 1.1, 1.2).
+  // Geometry and materials of the seed paper, section 4 / Table I (docs/method.md,
+  // sections 1.1, 1.2).
   const double b = 6e-3, H = 8e-3, t = 1e-3, q = 0.0;
   const double E = 0.207e9;      // geomembrane Young's modulus [Pa]
   const double gamma_II = 1.5e9; // soil unit weight, load II [N/m^3]

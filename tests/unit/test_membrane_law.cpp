@@ -11,8 +11,8 @@ using namespace pmpm;
 
 namespace {
 
-// A 1.5 mm HDPE sheet (FIELD.md 2): E = 600 MPa, sigma_y = 15 MPa (yield strain 2.5 %),
-// H = 30 MPa (5 % of E), uniaxial J = E t.
+// A 1.5 mm HDPE sheet (docs/method.md, section 7.2): E = 600 MPa, sigma_y = 15 MPa (yield
+// strain 2.5 %), H = 30 MPa (5 % of E), uniaxial J = E t.
 const double t_sheet = 1.5e-3;
 const double J = 600e6 * t_sheet;                    // 9e5 N/m
 const double YIELD_T = 15e6 * t_sheet;               // 2.25e4 N/m

@@ -2,7 +2,7 @@
 // cohesion and a tension cut-off on the mean stress. Closed-form return map, no iteration.
 //
 // Sources: de Souza Neto, Peric & Owen (2008), ch. 8 (DP return mapping, cone and apex);
-// Simo & Hughes (1998), ch. 3; REFERENCE.md section 4. Tension positive throughout:
+// Simo & Hughes (1998), ch. 3; docs/method.md, section 4. Tension positive throughout:
 //   p = tr(sigma)/3, s = dev(sigma), J2 = s:s/2, q = sqrt(J2) (NOT sqrt(3 J2) here)
 //   yield      Phi = sqrt(J2) + eta p - xi c(eps_p),       c = cohesion + H eps_p
 //   potential  Psi = sqrt(J2) + etabar p                   (etabar from psi; = eta if psi = phi)

@@ -1,10 +1,11 @@
-// Axial law of a geomembrane modelled as a chain of points (FIELD.md sections 1 and 3): each
-// segment carries a force per unit width T (N/m) from its engineering strain
+// Axial law of a geomembrane modelled as a chain of points (docs/method.md, sections 6.7 and 7.1):
+// each segment carries a force per unit width T (N/m) from its engineering strain
 //   eps = current length / initial length - 1.
 // Three kinds:
-//   linear         T = J eps                      (the catenary check, FIELD.md 3.1)
+//   linear         T = J eps                      (the catenary check, docs/method.md, section 6.1)
 //   tension_only   T = max(J eps, 0)              (a sheet buckles instead of carrying
-//                                                   compression; FIELD.md 1 "Wrinkles")
+//                                                   compression; docs/method.md, section 7.1
+//                                                   "Wrinkles")
 //   elastoplastic  1D von Mises, linear isotropic hardening, closed-form return map
 //                  (Simo & Hughes 1998, ch. 1; de Souza Neto, Peric & Owen 2008, ch. 6):
 //                    T_tr = J (eps - eps_p),  f = |T_tr| - (yield_T + hardening alpha)

@@ -1,6 +1,6 @@
 // Shared pieces of the closed-form return maps (von Mises, Drucker-Prager).
 //
-// Conventions (REFERENCE.md section 4): Cauchy stress, tension positive, always the full 3x3
+// Conventions (docs/method.md, section 4): Cauchy stress, tension positive, always the full 3x3
 // tensor (plane strain keeps sigma_zz, which evolves with plastic flow).
 //   p = tr(sigma)/3,  s = sigma - p I,  J2 = s:s/2.
 #pragma once
