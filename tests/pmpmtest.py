@@ -29,6 +29,13 @@ def run(exe, np, args, out, mpiexec="mpiexec", expect_ok=True, timeout=1200, cap
     return p.returncode, p.stdout
 
 
+def expected_verdict(value, error, allowable):
+    """The verdict design.cpp's judge() must give: value +- error against the allowable."""
+    if value + error <= allowable:
+        return "PASS"
+    return "EXCEEDED" if value - error > allowable else "INCONCLUSIVE: refine"
+
+
 def summary(out):
     with open(os.path.join(out, "summary.json")) as f:
         return json.load(f)
