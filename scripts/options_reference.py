@@ -40,6 +40,24 @@ def help_text(exe, opts):
     return p.stdout
 
 
+def scene_table(exe):
+    """The scene table (name -> one-line description) `pmpm -help` prints without a scene."""
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    p = subprocess.run([str(exe), "-help"], cwd=ROOT, env=env, stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, text=True, timeout=600)
+    if p.returncode != 0:
+        sys.exit(f"options_reference: {exe} -help failed (exit {p.returncode}):\n{p.stdout[-2000:]}")
+    out = OrderedDict()
+    lines = p.stdout.split("\n")
+    start = next((i for i, ln in enumerate(lines) if ln.startswith("Scenes (")), len(lines))
+    for ln in lines[start + 1:]:
+        m = re.match(r"^  ([a-z_0-9]+)\s+(.*)$", ln)
+        if not m:
+            break
+        out[m.group(1)] = m.group(2).strip()
+    return out
+
+
 def default_of(m):
     """The default an entry shows: enums and integers print <now X : formerly DEFAULT>, reals
     <X : DEFAULT>, booleans -name: <DEFAULT : X>; arrays and strings only their value."""
@@ -108,6 +126,7 @@ def merge(dst, src):
 
 
 def generate(exe):
+    table_of_scenes = scene_table(exe)
     files = sorted((ROOT / "options").glob("*.opts"))
     per_file = OrderedDict()
     scene_of = {}
@@ -142,16 +161,23 @@ def generate(exe):
           "",
           "## Contents",
           "",
+          "- [Scenes](#scenes)",
           "- [Options of every run](#options-of-every-run)"]
     for scene in scenes:
         md.append(f"- [Scene `{scene}`](#scene-{scene})")
+    md += ["", "## Scenes", "",
+           "The scene table of `src/scenes/registry.cpp`, as `pmpm -help` lists it; "
+           "`pmpm -scene NAME -help` lists a scene's options without an options file.", "",
+           "| scene | what it is |", "|---|---|"]
+    md += [f"| `{s}` | {cell(d)} |" for s, d in table_of_scenes.items()]
     md += ["", "## Options of every run", ""]
     for title, entries in common.items():
         md += [f"### {cell(title)}", ""] + table(entries, common=True) + [""]
     for scene, bl in scenes.items():
         used = [rel for rel in per_file if scene_of[rel] == scene]
         md += [f"## Scene {scene}", "",
-               "Options files: " + ", ".join(f"[`{r}`](../{r.as_posix()})" for r in used) +
+               (cell(table_of_scenes[scene][:1].upper() + table_of_scenes[scene][1:]) + ". " if scene in table_of_scenes
+                else "") + "Options files: " + ", ".join(f"[`{r}`](../{r.as_posix()})" for r in used) +
                ". Material and layer blocks are named after the materials these files define.",
                ""]
         for title, entries in bl.items():

@@ -1,14 +1,8 @@
-static const char help[] =
-    "pmpm: large-deformation quasi-static geomechanics with the partition Material Point Method.\n"
-    "Usage: mpirun -n N pmpm -options_file options/<scene>.opts [-option value ...]\n"
-    "Scenes: bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover, "
-    "footing, trapdoor.\n"
-    "-help lists every option.\n\n";
-
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
 #include "pmpm/options.hpp"
 #include "pmpm/output.hpp"
+#include "pmpm/simulation.hpp"
 #include <cstdio>
 #include <cstring>
 #include <functional>
@@ -142,10 +136,10 @@ static PetscErrorCode ReadEstimateOptions(MPI_Comm comm, EstimateOptions &e) {
                             "Order of convergence assumed with two meshes (0.5..4)", nullptr,
                             e.order, &e.order, nullptr));
   PetscOptionsEnd();
-  PetscCheck(e.levels >= 2 && e.levels <= 4, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-estimate_error_levels %d: must be 2, 3 or 4", (int)e.levels);
-  PetscCheck(e.order >= 0.5 && e.order <= 4, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-estimate_error_order %g: must be in [0.5, 4]", e.order);
+  PmpmCheckInput(e.levels >= 2 && e.levels <= 4, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-estimate_error_levels %d: must be 2, 3 or 4", (int)e.levels);
+  PmpmCheckInput(e.order >= 0.5 && e.order <= 4, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-estimate_error_order %g: must be in [0.5, 4]", e.order);
   PetscFunctionReturn(0);
 }
 
@@ -223,7 +217,13 @@ int main(int argc, char **argv) {
     MPI_Finalize();
     return 1;
   }
-  PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
+  // PETSc prints this above -help's listing
+  static const std::string help =
+      "pmpm: large-deformation quasi-static geomechanics with the partition Material Point "
+      "Method.\nUsage: mpirun -n N pmpm -options_file options/<scene>.opts [-option value ...]\n"
+      "Scenes: " +
+      SceneList() + ".\n-help lists every option (-scene NAME -help: that scene's).\n\n";
+  PetscCall(PetscInitialize(&argc, &argv, nullptr, help.c_str()));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
   int code = 0;
   const PetscErrorCode ierr = Run(&code);

@@ -261,3 +261,13 @@ std::string CheckOptionsFiles(int argc, char **argv) {
 }
 
 } // namespace pmpm
+
+namespace pmpm {
+
+bool ListingHelp() {
+  PetscBool help = PETSC_FALSE;
+  if (PetscOptionsHasHelp(nullptr, &help)) return false;
+  return help == PETSC_TRUE;
+}
+
+} // namespace pmpm

@@ -22,15 +22,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscInt ng = DIM;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
-  PetscCall(PetscOptionsString("-scene",
-                               "Scene: bar, column, landfill, incline, layers, block, catenary, "
-                               "pullout, trench, cover, footing, trapdoor",
-                               nullptr, scene, scene, sizeof(scene), &set));
-  PetscCheck(
-      set, comm, PETSC_ERR_USER_INPUT,
-      "No scene given: pass -options_file options/<scene>.opts or -scene NAME "
-      "(bar, column, landfill, incline, layers, block, catenary, pullout, trench, cover, footing, "
-      "trapdoor)");
+  const std::string scenes = SceneList();
+  PetscCall(PetscOptionsString("-scene", ("Scene: " + scenes).c_str(), nullptr, scene, scene,
+                               sizeof(scene), &set));
+  PmpmCheckInput(set, comm, PETSC_ERR_USER_INPUT,
+                 "No scene given: pass -options_file options/<scene>.opts or -scene NAME (%s)",
+                 scenes.c_str());
   s.scene = scene;
   PetscCall(PmpmOptionsReal("-cell_size", "Cell size h (m), > 0", nullptr, s.h, &s.h, nullptr));
   PetscCall(PmpmOptionsInt("-ppc", "Particles per cell per direction, 1..8", nullptr, s.ppc, &s.ppc,
@@ -47,8 +44,8 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
       PmpmOptionsInt("-max_steps", "Step cap, >= 1", nullptr, s.max_steps, &s.max_steps, nullptr));
   PetscCall(PetscOptionsString("-output_dir", "Output directory (default output/<scene>)", nullptr,
                                dir, dir, sizeof(dir), &set));
-  PetscCheck(!set || dir[0], comm, PETSC_ERR_USER_INPUT,
-             "-output_dir is empty: give a directory (default output/<scene>)");
+  PmpmCheckInput(!set || dir[0], comm, PETSC_ERR_USER_INPUT,
+                 "-output_dir is empty: give a directory (default output/<scene>)");
   s.output_dir = set ? std::string(dir) : "output/" + s.scene;
   PetscBool quiet = s.quiet ? PETSC_TRUE : PETSC_FALSE,
             dynamic = s.dynamic ? PETSC_TRUE : PETSC_FALSE,
@@ -106,8 +103,8 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                             (PetscEnum *)&s.inertia, nullptr));
   PetscCall(PmpmOptionsRealArray("-gravity_dir", "Gravity direction (normalised), gx,gy", nullptr,
                                  s.gdir, &ng, &set));
-  PetscCheck(!set || ng == DIM, comm, PETSC_ERR_USER_INPUT,
-             "-gravity_dir needs %d components, got %" PetscInt_FMT, DIM, ng);
+  PmpmCheckInput(!set || ng == DIM, comm, PETSC_ERR_USER_INPUT,
+                 "-gravity_dir needs %d components, got %" PetscInt_FMT, DIM, ng);
   PetscCall(PmpmOptionsReal("-progress_interval", "Seconds between progress lines", nullptr,
                             s.progress_seconds, &s.progress_seconds, nullptr));
   PetscCall(PetscOptionsBool("-dynamic", "Undamped dynamics: no damping, run to -max_steps",
@@ -129,9 +126,9 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                             "to the averaged volume change: B-bar; needed for dilatant flow)",
                             nullptr, FbarPressureNames, (PetscEnum)s.fbar_pressure,
                             (PetscEnum *)&s.fbar_pressure, nullptr));
-  PetscCheck(s.fbar || s.fbar_pressure == FbarPressure::Particle, comm, PETSC_ERR_USER_INPUT,
-             "-fbar_pressure cell acts on F-bar's groups: add -fbar, or set -fbar_pressure "
-             "particle to run without F-bar");
+  PmpmCheckInput(s.fbar || s.fbar_pressure == FbarPressure::Particle, comm, PETSC_ERR_USER_INPUT,
+                 "-fbar_pressure cell acts on F-bar's groups: add -fbar, or set -fbar_pressure "
+                 "particle to run without F-bar");
   PetscBool stage_end = s.checkpoint_stage_end ? PETSC_TRUE : PETSC_FALSE;
   char restart[PETSC_MAX_PATH_LEN] = "";
   PetscCall(PmpmOptionsInt("-checkpoint_every",
@@ -156,40 +153,43 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                             nullptr));
   PetscOptionsEnd();
 
-  PetscCheck(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
-  PetscCheck(s.ppc >= 1 && s.ppc <= 8, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-ppc must be in 1..8 (got %" PetscInt_FMT ")", s.ppc);
-  PetscCheck(s.cfl > 0 && s.cfl <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-cfl must be in (0, 1] (got %g): above 1 the explicit step is unstable", s.cfl);
-  PetscCheck(s.max_steps >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-max_steps must be >= 1");
-  PetscCheck(s.tol > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-tol must be > 0 (got %g)", s.tol);
-  PetscCheck(s.damping_alpha >= 0 && s.damping_alpha < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-damping_alpha must be in [0, 1) (got %g)", s.damping_alpha);
-  PetscCheck(s.fire_alpha >= 0 && s.fire_alpha < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-fire_alpha must be in [0, 1) (got %g)", s.fire_alpha);
-  PetscCheck(s.fire_decay > 0 && s.fire_decay <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-fire_decay must be in (0, 1] (got %g)", s.fire_decay);
-  PetscCheck(s.fire_delay >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-fire_delay must be >= 0 (got %" PetscInt_FMT ")", s.fire_delay);
-  PetscCheck(s.relax_history_every >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-relax_history_every must be >= 1 (got %" PetscInt_FMT ")", s.relax_history_every);
-  PetscCheck(s.ramp_steps >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ramp_steps must be >= 0");
-  PetscCheck(s.pic >= 0 && s.pic <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-pic must be in [0, 1] (got %g)", s.pic);
+  PmpmCheckInput(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
+  if (!(s.h > 0)) s.h = 1; // -help without a cell size: the scenes' lengths in cells stay finite
+  PmpmCheckInput(s.ppc >= 1 && s.ppc <= 8, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-ppc must be in 1..8 (got %" PetscInt_FMT ")", s.ppc);
+  PmpmCheckInput(s.cfl > 0 && s.cfl <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-cfl must be in (0, 1] (got %g): above 1 the explicit step is unstable", s.cfl);
+  PmpmCheckInput(s.max_steps >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-max_steps must be >= 1");
+  PmpmCheckInput(s.tol > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-tol must be > 0 (got %g)", s.tol);
+  PmpmCheckInput(s.damping_alpha >= 0 && s.damping_alpha < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-damping_alpha must be in [0, 1) (got %g)", s.damping_alpha);
+  PmpmCheckInput(s.fire_alpha >= 0 && s.fire_alpha < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-fire_alpha must be in [0, 1) (got %g)", s.fire_alpha);
+  PmpmCheckInput(s.fire_decay > 0 && s.fire_decay <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-fire_decay must be in (0, 1] (got %g)", s.fire_decay);
+  PmpmCheckInput(s.fire_delay >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-fire_delay must be >= 0 (got %" PetscInt_FMT ")", s.fire_delay);
+  PmpmCheckInput(s.relax_history_every >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-relax_history_every must be >= 1 (got %" PetscInt_FMT ")",
+                 s.relax_history_every);
+  PmpmCheckInput(s.ramp_steps >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-ramp_steps must be >= 0");
+  PmpmCheckInput(s.pic >= 0 && s.pic <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-pic must be in [0, 1] (got %g)", s.pic);
   // MUSL's second P2G and its kinematics from the remapped velocity would need the affine term
   // and break the angular momentum argument of affine.hpp (positions would not move by v_p)
-  PetscCheck(!(s.musl && s.transfer == Transfer::Apic), comm, PETSC_ERR_SUP,
-             "-transfer apic is not supported with -musl (use USL: -musl 0, or -transfer flip)");
-  PetscCheck(s.output_every >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_every must be >= 0");
-  PetscCheck(s.checkpoint_every >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-checkpoint_every must be >= 0 steps (got %" PetscInt_FMT "; 0: never)",
-             s.checkpoint_every);
-  PetscCheck(!set || !s.restart.empty(), comm, PETSC_ERR_USER_INPUT,
-             "-restart needs a checkpoint file (<output_dir>/checkpoint_<step>.h5)");
-  PetscCheck(s.progress_seconds >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-progress_interval must be >= 0 seconds (got %g)", s.progress_seconds);
+  PmpmCheckInput(
+      !(s.musl && s.transfer == Transfer::Apic), comm, PETSC_ERR_SUP,
+      "-transfer apic is not supported with -musl (use USL: -musl 0, or -transfer flip)");
+  PmpmCheckInput(s.output_every >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-output_every must be >= 0");
+  PmpmCheckInput(s.checkpoint_every >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-checkpoint_every must be >= 0 steps (got %" PetscInt_FMT "; 0: never)",
+                 s.checkpoint_every);
+  PmpmCheckInput(!set || !s.restart.empty(), comm, PETSC_ERR_USER_INPUT,
+                 "-restart needs a checkpoint file (<output_dir>/checkpoint_<step>.h5)");
+  PmpmCheckInput(s.progress_seconds >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-progress_interval must be >= 0 seconds (got %g)", s.progress_seconds);
   const double gn = std::hypot(s.gdir[0], s.gdir[1]);
-  PetscCheck(gn > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity_dir must be non-zero");
+  PmpmCheckInput(gn > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity_dir must be non-zero");
   for (int d = 0; d < DIM; ++d) s.gdir[d] /= gn;
   if (s.dynamic) s.damping = Damping::None;
   PetscFunctionReturn(0);
@@ -255,22 +255,23 @@ PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, Mater
                               nullptr, vm.hardening, &vm.hardening, nullptr));
   }
   PetscOptionsEnd();
-  PetscCheck(hasE, comm, PETSC_ERR_USER_INPUT, "-%sE is required (Young's modulus in Pa)",
-             prefix.c_str());
-  PetscCheck(hasnu, comm, PETSC_ERR_USER_INPUT, "-%snu is required (Poisson's ratio)",
-             prefix.c_str());
+  PmpmCheckInput(hasE, comm, PETSC_ERR_USER_INPUT, "-%sE is required (Young's modulus in Pa)",
+                 prefix.c_str());
+  PmpmCheckInput(hasnu, comm, PETSC_ERR_USER_INPUT, "-%snu is required (Poisson's ratio)",
+                 prefix.c_str());
   // Sane ranges: the stiffest solids are near 1e12 Pa, the landfill's scaled model loads its soil
   // with gamma = 1.5e9 N/m^3 (options/landfill.opts); beyond these a value is a typo, and it
   // would show only as a vanishing time step or an instability at step 1.
-  PetscCheck(m.el.E > 0 && m.el.E <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-%sE must be in (0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus, m.el.E);
-  PetscCheck(m.el.nu > -1 && m.el.nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-%snu must be in (-1, 0.5) (got %g)", prefix.c_str(), m.el.nu);
-  PetscCheck(m.gamma >= 0 && m.gamma <= kMaxUnitWeight, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-%sgamma must be in [0, %g] N/m^3 (got %g)", prefix.c_str(), kMaxUnitWeight, m.gamma);
-  PetscCheck(m.density >= 0 && m.density <= kMaxUnitWeight, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-%sdensity must be in (0, %g] kg/m^3 (got %g)", prefix.c_str(), kMaxUnitWeight,
-             m.density);
+  PmpmCheckInput(m.el.E > 0 && m.el.E <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-%sE must be in (0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus, m.el.E);
+  PmpmCheckInput(m.el.nu > -1 && m.el.nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-%snu must be in (-1, 0.5) (got %g)", prefix.c_str(), m.el.nu);
+  PmpmCheckInput(m.gamma >= 0 && m.gamma <= kMaxUnitWeight, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-%sgamma must be in [0, %g] N/m^3 (got %g)", prefix.c_str(), kMaxUnitWeight,
+                 m.gamma);
+  PmpmCheckInput(m.density >= 0 && m.density <= kMaxUnitWeight, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-%sdensity must be in (0, %g] kg/m^3 (got %g)", prefix.c_str(), kMaxUnitWeight,
+                 m.density);
   switch (model) {
   case MaterialModel::LinearElastic:
     m.model = std::make_unique<LinearElastic>(m.el);
@@ -279,30 +280,31 @@ PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, Mater
     m.model = std::make_unique<NeoHookean>(m.el);
     break;
   case MaterialModel::DruckerPrager:
-    PetscCheck(dp.cohesion >= 0 && dp.cohesion <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-%scohesion must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
-               dp.cohesion);
-    PetscCheck(dp.phi_deg >= 0 && dp.phi_deg <= 60, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-%sfriction_angle must be in [0, 60] degrees (got %g)", prefix.c_str(), dp.phi_deg);
-    PetscCheck(dp.psi_deg >= 0 && dp.psi_deg <= dp.phi_deg, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-%sdilation_angle must be in [0, friction_angle] (got %g)", prefix.c_str(),
-               dp.psi_deg);
-    PetscCheck(dp.hardening >= 0 && dp.hardening <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-%shardening must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
-               dp.hardening);
-    PetscCheck(dp.phi_deg > 0 || dp.cohesion > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-%scohesion and -%sfriction_angle cannot both be 0", prefix.c_str(),
-               prefix.c_str());
+    PmpmCheckInput(dp.cohesion >= 0 && dp.cohesion <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%scohesion must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
+                   dp.cohesion);
+    PmpmCheckInput(dp.phi_deg >= 0 && dp.phi_deg <= 60, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%sfriction_angle must be in [0, 60] degrees (got %g)", prefix.c_str(),
+                   dp.phi_deg);
+    PmpmCheckInput(dp.psi_deg >= 0 && dp.psi_deg <= dp.phi_deg, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%sdilation_angle must be in [0, friction_angle] (got %g)", prefix.c_str(),
+                   dp.psi_deg);
+    PmpmCheckInput(dp.hardening >= 0 && dp.hardening <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%shardening must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
+                   dp.hardening);
+    PmpmCheckInput(dp.phi_deg > 0 || dp.cohesion > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%scohesion and -%sfriction_angle cannot both be 0", prefix.c_str(),
+                   prefix.c_str());
     dp.el = m.el;
     m.model = std::make_unique<DruckerPrager>(dp);
     break;
   case MaterialModel::VonMises:
-    PetscCheck(vm.sigma_y0 > 0 && vm.sigma_y0 <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-%syield_stress must be in (0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
-               vm.sigma_y0);
-    PetscCheck(vm.hardening >= 0 && vm.hardening <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-%shardening must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
-               vm.hardening);
+    PmpmCheckInput(vm.sigma_y0 > 0 && vm.sigma_y0 <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%syield_stress must be in (0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
+                   vm.sigma_y0);
+    PmpmCheckInput(vm.hardening >= 0 && vm.hardening <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%shardening must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
+                   vm.hardening);
     vm.el = m.el;
     m.model = std::make_unique<VonMises>(vm);
     break;
@@ -349,16 +351,17 @@ PetscErrorCode BoundaryFromOptions(Simulation &sim) {
     PetscInt n = DIM;
     PetscBool set = PETSC_FALSE;
     PetscCall(PmpmOptionsRealArray(topt, help, nullptr, sim.face_traction[f], &n, &set));
-    PetscCheck(!set || n == DIM, sim.comm, PETSC_ERR_USER_INPUT,
-               "-bc_%s_traction needs %d components, got %" PetscInt_FMT, kFaceNames[f], DIM, n);
+    PmpmCheckInput(!set || n == DIM, sim.comm, PETSC_ERR_USER_INPUT,
+                   "-bc_%s_traction needs %d components, got %" PetscInt_FMT, kFaceNames[f], DIM,
+                   n);
   }
   PetscOptionsEnd();
   for (int f = 0; f < 2 * DIM; ++f)
-    PetscCheck(sim.face[f] == FaceBC::Free ||
-                   (sim.face_traction[f][0] == 0 && sim.face_traction[f][1] == 0),
-               sim.comm, PETSC_ERR_ARG_INCOMP,
-               "-bc_%s_traction needs -bc_%s free (a held face takes no traction)", kFaceNames[f],
-               kFaceNames[f]);
+    PmpmCheckInput(sim.face[f] == FaceBC::Free ||
+                       (sim.face_traction[f][0] == 0 && sim.face_traction[f][1] == 0),
+                   sim.comm, PETSC_ERR_ARG_INCOMP,
+                   "-bc_%s_traction needs -bc_%s free (a held face takes no traction)",
+                   kFaceNames[f], kFaceNames[f]);
   PetscFunctionReturn(0);
 }
 
@@ -461,22 +464,26 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   MemoryCheck mem;
   PetscCall(MemoryFromOptions(sim.comm, mem));
   sim.scene = make_scene(sim.set.scene);
-  PetscCheck(sim.scene, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-scene %s is unknown; allowed: bar, column, landfill, incline, layers, block, "
-             "catenary, pullout, trench, cover, footing, trapdoor",
-             sim.set.scene.c_str());
+  PetscCheck(sim.scene || (help && sim.set.scene.empty()), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-scene %s is unknown; allowed: %s", sim.set.scene.c_str(), SceneList().c_str());
+  if (!sim.scene) { // -help without a scene: the scenes, then the options of no scene
+    PetscCall(
+        PetscPrintf(sim.comm, "Scenes (-scene NAME; -scene NAME -help lists its options):\n"));
+    for (const SceneEntry &e : Scenes())
+      PetscCall(PetscPrintf(sim.comm, "  %-10s %s\n", e.name, e.description));
+  }
   PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
   PetscCall(PmpmOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
                             sim.chain_spacing, &sim.chain_spacing, nullptr));
   PetscOptionsEnd();
-  PetscCall(sim.scene->setup(sim));
+  if (sim.scene) PetscCall(sim.scene->setup(sim));
   PetscCall(BoundaryFromOptions(sim));
-  PetscCheck(!sim.mats.empty() || !sim.chain_specs.empty(), sim.comm, PETSC_ERR_PLIB,
+  PetscCheck(!sim.mats.empty() || !sim.chain_specs.empty() || help, sim.comm, PETSC_ERR_PLIB,
              "scene defined no material");
   // F-bar with the particles' own pressures is unstable under dilatant flow (the c-phi footing
   // heaves and flows at 0.8 of its capacity; README, "Anti-locking"): refused, not run.
   for (auto &m : sim.mats)
-    PetscCheck(
+    PmpmCheckInput(
         !(sim.set.fbar && sim.set.fbar_pressure == FbarPressure::Particle && m.model->dilatant()),
         sim.comm, PETSC_ERR_USER_INPUT,
         "-fbar with the dilatant material %s (-mat_%s_dilation_angle > 0) needs "
@@ -490,18 +497,20 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   double cmax = 0;
   for (auto &m : sim.mats) {
     if (sim.set.inertia == InertiaScaling::None) {
-      PetscCheck(m.density > 0, sim.comm, PETSC_ERR_USER_INPUT,
-                 "-mat_%s_density is required (> 0) with -inertia_scaling none", m.name.c_str());
+      PmpmCheckInput(m.density > 0, sim.comm, PETSC_ERR_USER_INPUT,
+                     "-mat_%s_density is required (> 0) with -inertia_scaling none",
+                     m.name.c_str());
     } else if (m.density <= 0) {
       m.density = m.gamma > 0 ? m.gamma / 9.81 : 1000.0;
     }
     const double c = std::sqrt(m.model->wave_modulus() / m.density);
-    PetscCheck(c <= kMaxWaveSpeed, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-mat_%s_E %g Pa over the density %g kg/m^3 (-mat_%s_density, or -mat_%s_gamma / "
-               "9.81) gives a wave speed of %g m/s, above %g m/s: the time step would be %g s "
-               "(-cfl x -cell_size / wave speed); check -mat_%s_E and its density",
-               m.name.c_str(), m.el.E, m.density, m.name.c_str(), m.name.c_str(), c, kMaxWaveSpeed,
-               sim.set.cfl * sim.set.h / c, m.name.c_str());
+    PmpmCheckInput(
+        c <= kMaxWaveSpeed, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+        "-mat_%s_E %g Pa over the density %g kg/m^3 (-mat_%s_density, or -mat_%s_gamma / "
+        "9.81) gives a wave speed of %g m/s, above %g m/s: the time step would be %g s "
+        "(-cfl x -cell_size / wave speed); check -mat_%s_E and its density",
+        m.name.c_str(), m.el.E, m.density, m.name.c_str(), m.name.c_str(), c, kMaxWaveSpeed,
+        sim.set.cfl * sim.set.h / c, m.name.c_str());
     cmax = std::fmax(cmax, c);
   }
   sim.wave_modulus.clear();
@@ -603,7 +612,11 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
     c.top.type = c.bottom.type = ft;
     c.top.mu = sim.iface.mu_top;
     c.bottom.mu = sim.iface.mu_bottom;
-    PetscCall(ChainCreate(sim.comm, sim.chain_specs[k], sim.chain_spacing * sim.set.h, c));
+    // -help: a chain's unchecked defaults may stop it; its options are listed up to there
+    const PetscErrorCode chain_err =
+        ChainCreate(sim.comm, sim.chain_specs[k], sim.chain_spacing * sim.set.h, c);
+    if (help && chain_err) continue;
+    PetscCall(chain_err);
     // inertia: the sheet's axial wave no faster than the continuum's (its load is unchanged)
     if (chain_scaling && cmax > 0) c.line_mass = c.law.J / (cmax * cmax);
     c.strain_projection = strain_projection;
@@ -618,6 +631,15 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   for (int f = 0; f < 2 * DIM; ++f) sim.contact.face[f] = sim.face[f];
 
   PetscCall(BalanceFromOptions(sim.comm, sim.balance));
+  if (help) { // -help: the grid's and Newton's options need a grid, whatever box the scene's
+    // (unchecked) defaults give; no particles
+    for (int d = 0; d < DIM; ++d)
+      sim.ncell[d] = std::min<PetscInt>(std::max<PetscInt>(sim.ncell[d], 4 * sim.size), 256);
+    PetscCall(GridCreate(sim.comm, sim.set.h > 0 ? sim.set.h : 1.0, sim.origin, sim.ncell, nbody,
+                         nchain * ChainDof::NDOF, sim.grid));
+    PetscCall(NewtonSetup(sim));
+    PetscFunctionReturn(0);
+  }
   const bool iface = sim.iface.type != InterfaceType::Bonded && nchain == 0;
   PetscCall(CheckProcessGrid(sim));
   if (!help)

@@ -34,7 +34,17 @@ PetscErrorCode OptionInt(PetscOptionItems *items, const char opt[], const char t
 // (and its value), an include cycle or includes nested deeper than 16.
 std::string CheckOptionsFiles(int argc, char **argv);
 
+// True under -help: the run lists every options block and runs nothing (PETSc's convention), so
+// the checks of the values read are skipped (an incomplete scene's defaults need not be valid).
+bool ListingHelp();
+
 } // namespace pmpm
+
+// A check of the input (as PetscCheck), skipped under -help (ListingHelp).
+#define PmpmCheckInput(cond, comm, err, ...)                                                       \
+  PetscCheck((cond) || pmpm::ListingHelp(), comm, err, __VA_ARGS__)
+
+namespace pmpm {} // namespace pmpm
 
 // Inside a PetscOptionsBegin/End block, as PetscOptionsReal/RealArray/Int.
 #define PmpmOptionsReal(a, b, c, d, e, f) pmpm::OptionReal(PetscOptionsObject, a, b, c, d, e, f)

@@ -129,6 +129,15 @@ public:
   virtual PetscErrorCode checkpoint_read(Simulation &, PetscViewer) { return 0; }
 };
 
+// The scene table (src/scenes/registry.cpp): one entry per scene, in -help's order.
+struct SceneEntry {
+  const char *name;                 // -scene's value; the scene's options are -<name>_*
+  std::unique_ptr<Scene> (*make)(); // the factory
+  const char *description;          // one line: -help, docs/options.md
+};
+const std::vector<SceneEntry> &Scenes();
+std::string SceneList(); // the names joined by ", " (error messages, help texts)
+// The scene of that name, or null.
 std::unique_ptr<Scene> make_scene(const std::string &name);
 
 struct RunState {

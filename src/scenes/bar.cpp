@@ -49,19 +49,20 @@ public:
     PetscInt nB, nbox;
     PetscCall(CheckCells(sim.comm, "-bar_length", L_, sim.set.h, &nL_));
     PetscCall(CheckCells(sim.comm, "-bar_height", B_, sim.set.h, &nB));
-    PetscCheck(!box_set || box_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-bar_box_length must be > 0 m (got %g; default 1.5 L)", box_);
+    PmpmCheckInput(!box_set || box_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-bar_box_length must be > 0 m (got %g; default 1.5 L)", box_);
     if (box_ <= 0) box_ = sim.set.h * std::ceil(1.5 * L_ / sim.set.h);
     PetscCall(CheckCells(sim.comm, "-bar_box_length", box_, sim.set.h, &nbox));
-    PetscCheck(nbox >= nL_ + 2, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-bar_box_length %g m leaves no room for the bar to stretch: the grid is too small "
-               "for the particles (need >= L + 2 cells = %g m)",
-               box_, (nL_ + 2) * sim.set.h);
-    PetscCheck(
+    PmpmCheckInput(
+        nbox >= nL_ + 2, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+        "-bar_box_length %g m leaves no room for the bar to stretch: the grid is too small "
+        "for the particles (need >= L + 2 cells = %g m)",
+        box_, (nL_ + 2) * sim.set.h);
+    PmpmCheckInput(
         t_ != 0 || v0_ != 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
         "-bar_traction must be non-zero (or give -bar_initial_velocity for a vibrating bar)");
-    PetscCheck(v0_ == 0 || t_ == 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-bar_initial_velocity needs -bar_traction 0 (free vibration)");
+    PmpmCheckInput(v0_ == 0 || t_ == 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-bar_initial_velocity needs -bar_traction 0 (free vibration)");
     sim.origin[0] = sim.origin[1] = 0;
     sim.ncell[0] = nbox;
     sim.ncell[1] = top_roller_ ? nB : nB + 1;

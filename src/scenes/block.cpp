@@ -112,15 +112,15 @@ public:
     PetscCall(CheckCells(sim.comm, "-block_height", Hb_, sim.set.h, &ny));
     if (xc_[0] < 0) xc_[0] = 0.5 * box_[0];
     if (xc_[1] < 0) xc_[1] = 0.5 * box_[1];
-    PetscCheck(period_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-block_period must be >= 0");
-    PetscCheck(period_ == 0 || std::hypot(v0_[0], v0_[1]) > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-block_period needs a non-zero -block_velocity");
+    PmpmCheckInput(period_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-block_period must be >= 0");
+    PmpmCheckInput(period_ == 0 || std::hypot(v0_[0], v0_[1]) > 0, sim.comm,
+                   PETSC_ERR_ARG_OUTOFRANGE, "-block_period needs a non-zero -block_velocity");
     // The block must start a cell clear of the box faces (its support stays on the grid).
     const double h = sim.set.h;
-    PetscCheck(xc_[0] - 0.5 * Lb_ >= h && xc_[0] + 0.5 * Lb_ <= box_[0] - h &&
-                   xc_[1] - 0.5 * Hb_ >= h && xc_[1] + 0.5 * Hb_ <= box_[1] - h,
-               sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-block_centre: the block must start at least one cell inside -block_box");
+    PmpmCheckInput(xc_[0] - 0.5 * Lb_ >= h && xc_[0] + 0.5 * Lb_ <= box_[0] - h &&
+                       xc_[1] - 0.5 * Hb_ >= h && xc_[1] + 0.5 * Hb_ <= box_[1] - h,
+                   sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-block_centre: the block must start at least one cell inside -block_box");
     sim.origin[0] = sim.origin[1] = 0;
     for (int f = 0; f < 2 * DIM; ++f) sim.face[f] = FaceBC::Free;
     if (period_ > 0) { // the driving force acts along v0
@@ -130,10 +130,10 @@ public:
     sim.set.ramp_steps = 0;
     sim.mats.resize(1);
     PetscCall(MaterialFromOptions(sim.comm, "block", sim.mats[0]));
-    PetscCheck(sim.mats[0].gamma == 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-mat_block_gamma must be 0: the block floats in an empty box (no gravity)");
-    PetscCheck(sim.set.dynamic, sim.comm, PETSC_ERR_USER_INPUT,
-               "the block scene is undamped dynamics: add -dynamic");
+    PmpmCheckInput(sim.mats[0].gamma == 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-mat_block_gamma must be 0: the block floats in an empty box (no gravity)");
+    PmpmCheckInput(sim.set.dynamic, sim.comm, PETSC_ERR_USER_INPUT,
+                   "the block scene is undamped dynamics: add -dynamic");
     PetscFunctionReturn(0);
   }
 

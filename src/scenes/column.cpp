@@ -55,8 +55,8 @@ public:
     PetscCall(
         PmpmOptionsReal("-width", "Column width (m); default 4 cells", nullptr, W_, &W_, &w_set));
     PetscOptionsEnd();
-    PetscCheck(!w_set || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-column_width must be > 0 m (got %g; default 4 cells)", W_);
+    PmpmCheckInput(!w_set || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-column_width must be > 0 m (got %g; default 4 cells)", W_);
     if (W_ <= 0) W_ = 4 * sim.set.h;
     PetscInt nH, nW;
     PetscCall(CheckCells(sim.comm, "-column_height", H_, sim.set.h, &nH));
@@ -68,8 +68,8 @@ public:
     sim.face[YMIN] = FaceBC::Fixed;
     sim.mats.resize(1);
     PetscCall(MaterialFromOptions(sim.comm, "column", sim.mats[0]));
-    PetscCheck(sim.mats[0].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-mat_column_gamma must be > 0 for a column under self-weight");
+    PmpmCheckInput(sim.mats[0].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-mat_column_gamma must be > 0 for a column under self-weight");
     PetscFunctionReturn(0);
   }
 

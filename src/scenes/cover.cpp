@@ -276,24 +276,25 @@ class CoverScene final : public Scene {
     if (m_set) TakeNames(mnames, nm, mem_names);
     void_w_.assign(vw.begin(), vw.begin() + (vw_set ? nvoid : 0));
     if (surf_set) {
-      PetscCheck(nsurf >= 4 && nsurf % 2 == 0, sim.comm, PETSC_ERR_USER_INPUT,
-                 "-cover_surface needs pairs x,y (at least 2 points), got %d numbers", (int)nsurf);
+      PmpmCheckInput(nsurf >= 4 && nsurf % 2 == 0, sim.comm, PETSC_ERR_USER_INPUT,
+                     "-cover_surface needs pairs x,y (at least 2 points), got %d numbers",
+                     (int)nsurf);
       surf_.assign(surf.begin(), surf.begin() + nsurf);
     }
     if (zx_set) {
-      PetscCheck(nz == 2 && zx[1] > zx[0], sim.comm, PETSC_ERR_USER_INPUT,
-                 "-cover_shrink_x needs x_lo,x_hi with x_lo < x_hi");
+      PmpmCheckInput(nz == 2 && zx[1] > zx[0], sim.comm, PETSC_ERR_USER_INPUT,
+                     "-cover_shrink_x needs x_lo,x_hi with x_lo < x_hi");
       sim.shrink.x_lo = zx[0];
       sim.shrink.x_hi = zx[1];
     }
-    PetscCheck(!gr_set || ng == 2, sim.comm, PETSC_ERR_USER_INPUT,
-               "-cover_shrink_grade needs bottom,top");
+    PmpmCheckInput(!gr_set || ng == 2, sim.comm, PETSC_ERR_USER_INPUT,
+                   "-cover_shrink_grade needs bottom,top");
     sim.shrink.grade_bottom = gr[0];
     sim.shrink.grade_top = gr[1];
 
     // layers and membranes: their own prefixed options
-    PetscCheck(!layer_names.empty(), sim.comm, PETSC_ERR_USER_INPUT,
-               "-cover_layers needs at least one layer");
+    PmpmCheckInput(!layer_names.empty(), sim.comm, PETSC_ERR_USER_INPUT,
+                   "-cover_layers needs at least one layer");
     layers_.clear();
     for (auto it = layer_names.rbegin(); it != layer_names.rend(); ++it) {
       Layer L;
@@ -311,10 +312,10 @@ class CoverScene final : public Scene {
       PetscCall(PetscOptionsString("-material", "Material (-mat_<name>_*; default: the layer's)",
                                    nullptr, mat, mat, sizeof(mat), nullptr));
       PetscOptionsEnd();
-      PetscCheck(t > 0, sim.comm, PETSC_ERR_USER_INPUT,
-                 "-%sthickness is required and must be > 0 (got %g)", pre.c_str(), t);
-      PetscCheck(te < 0 || te > 0, sim.comm, PETSC_ERR_USER_INPUT,
-                 "-%sthickness_end must be > 0 (got %g)", pre.c_str(), te);
+      PmpmCheckInput(t > 0, sim.comm, PETSC_ERR_USER_INPUT,
+                     "-%sthickness is required and must be > 0 (got %g)", pre.c_str(), t);
+      PmpmCheckInput(te < 0 || te > 0, sim.comm, PETSC_ERR_USER_INPUT,
+                     "-%sthickness_end must be > 0 (got %g)", pre.c_str(), te);
       L.t_start = t;
       L.t_end = te > 0 ? te : t;
       L.mat = -1;
@@ -342,16 +343,16 @@ class CoverScene final : public Scene {
       M.layer = -1;
       for (size_t k = 0; k < layers_.size(); ++k)
         if (layers_[k].name == M.under) M.layer = static_cast<int>(k);
-      PetscCheck(M.layer >= 0, sim.comm, PETSC_ERR_USER_INPUT,
-                 "-%sunder must name one of -cover_layers (got \"%s\")", pre.c_str(), under);
-      PetscCheck(M.thickness > 0, sim.comm, PETSC_ERR_USER_INPUT,
-                 "-%sthickness is required and must be > 0 (got %g)", pre.c_str(), M.thickness);
+      PmpmCheckInput(M.layer >= 0, sim.comm, PETSC_ERR_USER_INPUT,
+                     "-%sunder must name one of -cover_layers (got \"%s\")", pre.c_str(), under);
+      PmpmCheckInput(M.thickness > 0, sim.comm, PETSC_ERR_USER_INPUT,
+                     "-%sthickness is required and must be > 0 (got %g)", pre.c_str(), M.thickness);
       // two sheets at the base of one layer would lie on top of each other
       for (const Membrane &o : mem_)
-        PetscCheck(o.layer != M.layer, sim.comm, PETSC_ERR_USER_INPUT,
-                   "-%sunder %s: membrane %s already lies under layer %s (one membrane per "
-                   "layer; put it under another of -cover_layers)",
-                   pre.c_str(), under, o.name.c_str(), under);
+        PmpmCheckInput(o.layer != M.layer, sim.comm, PETSC_ERR_USER_INPUT,
+                       "-%sunder %s: membrane %s already lies under layer %s (one membrane per "
+                       "layer; put it under another of -cover_layers)",
+                       pre.c_str(), under, o.name.c_str(), under);
       mem_.push_back(M);
     }
     std::sort(mem_.begin(), mem_.end(),
@@ -362,85 +363,89 @@ class CoverScene final : public Scene {
 
   PetscErrorCode Validate(Simulation &sim) {
     PetscFunctionBeginUser;
-    PetscCheck(W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-cover_width must be > 0 (got %g)", W_);
-    PetscCheck(Hw_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-cover_waste_height must be > 0 (got %g)", Hw_);
+    PmpmCheckInput(W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-cover_width must be > 0 (got %g)",
+                   W_);
+    PmpmCheckInput(Hw_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_waste_height must be > 0 (got %g)", Hw_);
     if (surf_.empty()) {
       const double g = grade_ / 100.0;
       if (slope_len_ > 0) {
-        PetscCheck(slope_deg_ > 0 && slope_deg_ < 60, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-cover_slope_angle must be in (0, 60) degrees with -cover_slope_length "
-                   "(got %g)",
-                   slope_deg_);
+        PmpmCheckInput(slope_deg_ > 0 && slope_deg_ < 60, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                       "-cover_slope_angle must be in (0, 60) degrees with -cover_slope_length "
+                       "(got %g)",
+                       slope_deg_);
         const double xc = toe_x_ + slope_len_ * std::cos(slope_deg_ * kDeg);
         const double yc = Hw_ + slope_len_ * std::sin(slope_deg_ * kDeg);
-        PetscCheck(toe_x_ >= 0 && xc < W_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-cover_toe_x %g and -cover_slope_length %g put the crest at x = %g m, beyond "
-                   "-cover_width %g",
-                   toe_x_, slope_len_, xc, W_);
+        PmpmCheckInput(
+            toe_x_ >= 0 && xc < W_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+            "-cover_toe_x %g and -cover_slope_length %g put the crest at x = %g m, beyond "
+            "-cover_width %g",
+            toe_x_, slope_len_, xc, W_);
         surf_ = {0, Hw_, toe_x_, Hw_, xc, yc, W_, yc + g * (W_ - xc)};
       } else {
         surf_ = {0, Hw_, W_, Hw_ + g * W_};
       }
     }
     const size_t n = surf_.size() / 2;
-    PetscCheck(std::fabs(surf_[0]) < 1e-12 && std::fabs(surf_[2 * n - 2] - W_) < 1e-9 * W_,
-               sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-cover_surface must run from x = 0 to x = -cover_width %g", W_);
+    PmpmCheckInput(std::fabs(surf_[0]) < 1e-12 && std::fabs(surf_[2 * n - 2] - W_) < 1e-9 * W_,
+                   sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_surface must run from x = 0 to x = -cover_width %g", W_);
     for (size_t k = 0; k < n; ++k) {
-      PetscCheck(surf_[2 * k + 1] > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "-cover_surface: the waste surface must lie above y = 0 (point %d)", (int)k);
+      PmpmCheckInput(surf_[2 * k + 1] > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                     "-cover_surface: the waste surface must lie above y = 0 (point %d)", (int)k);
       if (k + 1 < n)
-        PetscCheck(surf_[2 * k + 2] > surf_[2 * k], sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-cover_surface: x must increase (point %d)", (int)k + 1);
+        PmpmCheckInput(surf_[2 * k + 2] > surf_[2 * k], sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                       "-cover_surface: x must increase (point %d)", (int)k + 1);
     }
-    PetscCheck(shrink_total_ >= 0 && shrink_total_ <= 0.6, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-cover_shrink_total must be in [0, 0.6] (got %g)", shrink_total_);
-    PetscCheck(shrink_stages_ >= 0 && shrink_stages_ <= 100, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-cover_shrink_stages must be in 0..100 (got %d)", (int)shrink_stages_);
-    PetscCheck(!(shrink_total_ > 0 && shrink_stages_ == 0), sim.comm, PETSC_ERR_USER_INPUT,
-               "-cover_shrink_total %g needs -cover_shrink_stages >= 1", shrink_total_);
-    PetscCheck(shrink_steps_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-cover_shrink_steps must be >= 0");
+    PmpmCheckInput(shrink_total_ >= 0 && shrink_total_ <= 0.6, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_shrink_total must be in [0, 0.6] (got %g)", shrink_total_);
+    PmpmCheckInput(shrink_stages_ >= 0 && shrink_stages_ <= 100, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_shrink_stages must be in 0..100 (got %d)", (int)shrink_stages_);
+    PmpmCheckInput(!(shrink_total_ > 0 && shrink_stages_ == 0), sim.comm, PETSC_ERR_USER_INPUT,
+                   "-cover_shrink_total %g needs -cover_shrink_stages >= 1", shrink_total_);
+    PmpmCheckInput(shrink_steps_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_shrink_steps must be >= 0");
     // -solver newton solves bonded chains only (newton.cpp checks their own faces): the
     // geostatic stage's paper faces would be a frictional interface in stage 0 (-help only lists)
     PetscBool help = PETSC_FALSE;
     PetscCall(PetscOptionsHasHelp(nullptr, &help));
-    PetscCheck(help || !(sim.set.solver == Solver::Newton && geostatic_paper_ && !mem_.empty()),
-               sim.comm, PETSC_ERR_SUP,
-               "-solver newton needs the membranes bonded in every stage, and "
-               "-cover_geostatic_paper (on by default) runs stage 0 with paper faces: add "
-               "-cover_geostatic_paper false (with -chain_<name>_interface bonded), or use "
-               "-solver relaxation");
-    PetscCheck(sim.shrink.taper >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-cover_shrink_taper must be >= 0");
-    PetscCheck(sim.shrink.grade_bottom >= 0 && sim.shrink.grade_top >= 0, sim.comm,
-               PETSC_ERR_ARG_OUTOFRANGE, "-cover_shrink_grade factors must be >= 0");
+    PmpmCheckInput(help || !(sim.set.solver == Solver::Newton && geostatic_paper_ && !mem_.empty()),
+                   sim.comm, PETSC_ERR_SUP,
+                   "-solver newton needs the membranes bonded in every stage, and "
+                   "-cover_geostatic_paper (on by default) runs stage 0 with paper faces: add "
+                   "-cover_geostatic_paper false (with -chain_<name>_interface bonded), or use "
+                   "-solver relaxation");
+    PmpmCheckInput(sim.shrink.taper >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_shrink_taper must be >= 0");
+    PmpmCheckInput(sim.shrink.grade_bottom >= 0 && sim.shrink.grade_top >= 0, sim.comm,
+                   PETSC_ERR_ARG_OUTOFRANGE, "-cover_shrink_grade factors must be >= 0");
     for (size_t k = 0; k < void_w_.size(); ++k)
-      PetscCheck(void_w_[k] > 0 && (k == 0 || void_w_[k] >= void_w_[k - 1]), sim.comm,
-                 PETSC_ERR_ARG_OUTOFRANGE,
-                 "-cover_void_widths must be positive and non-decreasing (entry %d: %g)", (int)k,
-                 void_w_[k]);
+      PmpmCheckInput(void_w_[k] > 0 && (k == 0 || void_w_[k] >= void_w_[k - 1]), sim.comm,
+                     PETSC_ERR_ARG_OUTOFRANGE,
+                     "-cover_void_widths must be positive and non-decreasing (entry %d: %g)",
+                     (int)k, void_w_[k]);
     if (!void_w_.empty()) {
       const double w = void_w_.back();
-      PetscCheck(void_x_ - w / 2 > 0 && void_x_ + w / 2 < W_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "-cover_void_x %g with width %g puts the void outside (0, %g)", void_x_, w, W_);
-      PetscCheck(void_h_ > 0 && void_depth_ >= 0 && void_depth_ + void_h_ < ys(void_x_), sim.comm,
-                 PETSC_ERR_ARG_OUTOFRANGE,
-                 "-cover_void_height %g (> 0) and -cover_void_depth %g (>= 0) must fit in the "
-                 "waste (%g m thick at the void)",
-                 void_h_, void_depth_, ys(void_x_));
-      PetscCheck(void_w_.front() >= 2 * dxp_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "-cover_void_widths %g is less than two particle columns (%g m): refine "
-                 "-cell_size",
-                 void_w_.front(), 2 * dxp_);
+      PmpmCheckInput(
+          void_x_ - w / 2 > 0 && void_x_ + w / 2 < W_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+          "-cover_void_x %g with width %g puts the void outside (0, %g)", void_x_, w, W_);
+      PmpmCheckInput(void_h_ > 0 && void_depth_ >= 0 && void_depth_ + void_h_ < ys(void_x_),
+                     sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                     "-cover_void_height %g (> 0) and -cover_void_depth %g (>= 0) must fit in the "
+                     "waste (%g m thick at the void)",
+                     void_h_, void_depth_, ys(void_x_));
+      PmpmCheckInput(void_w_.front() >= 2 * dxp_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                     "-cover_void_widths %g is less than two particle columns (%g m): refine "
+                     "-cell_size",
+                     void_w_.front(), 2 * dxp_);
     }
-    PetscCheck(allowable_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-cover_allowable_strain must be > 0");
-    PetscCheck(gauge_ == 0 || gauge_ >= sim.set.h * (1 - 1e-9), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-cover_strain_gauge %g m is shorter than a cell (%g m): the grid does not resolve "
-               "strain over less (0 picks one cell)",
-               gauge_, sim.set.h);
+    PmpmCheckInput(allowable_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_allowable_strain must be > 0");
+    PmpmCheckInput(
+        gauge_ == 0 || gauge_ >= sim.set.h * (1 - 1e-9), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+        "-cover_strain_gauge %g m is shorter than a cell (%g m): the grid does not resolve "
+        "strain over less (0 picks one cell)",
+        gauge_, sim.set.h);
     if (gauge_ == 0) gauge_ = sim.set.h;
     PetscFunctionReturn(0);
   }
@@ -477,9 +482,10 @@ public:
     for (size_t m = 0; m < names.size(); ++m)
       PetscCall(MaterialFromOptions(sim.comm, names[m], sim.mats[m]));
     for (const Layer &l : layers_) cover_mat_[l.mat] = 1;
-    PetscCheck(!cover_mat_[0], sim.comm, PETSC_ERR_USER_INPUT,
-               "-cover_waste_material %s is also a cover layer's material: give the waste its own",
-               waste_mat_.c_str());
+    PmpmCheckInput(
+        !cover_mat_[0], sim.comm, PETSC_ERR_USER_INPUT,
+        "-cover_waste_material %s is also a cover layer's material: give the waste its own",
+        waste_mat_.c_str());
     // degradation: the waste shrinks (rate-form materials only)
     sim.shrink.degrades.assign(names.size(), 0);
     sim.shrink.degrades[0] = 1;
@@ -489,10 +495,10 @@ public:
       double ytop = 0;
       for (size_t k = 0; k < surf_.size() / 2; ++k) ytop = std::fmax(ytop, surf_[2 * k + 1]);
       sim.shrink.y_hi = ytop; // grading is linear from the base to the highest waste surface
-      PetscCheck(sim.mats[0].model->rate_form(), sim.comm, PETSC_ERR_SUP,
-                 "-cover_shrink_total needs a rate-form waste material (linear_elastic, "
-                 "drucker_prager, von_mises), not -mat_%s_model %s",
-                 waste_mat_.c_str(), sim.mats[0].model->model());
+      PmpmCheckInput(sim.mats[0].model->rate_form(), sim.comm, PETSC_ERR_SUP,
+                     "-cover_shrink_total needs a rate-form waste material (linear_elastic, "
+                     "drucker_prager, von_mises), not -mat_%s_model %s",
+                     waste_mat_.c_str(), sim.mats[0].model->model());
     }
     // membranes: chains at the base of their layers, ends half a point spacing inside the walls
     for (const Membrane &M : mem_) {

@@ -124,20 +124,21 @@ public:
                              "-ramp_steps)",
                              nullptr, ramp_, &ramp_, nullptr));
     PetscOptionsEnd();
-    PetscCheck(set && n >= 1, sim.comm, PETSC_ERR_USER_INPUT,
-               "-footing_pressures is required: the footing pressure of each stage (Pa)");
+    PmpmCheckInput(set && n >= 1, sim.comm, PETSC_ERR_USER_INPUT,
+                   "-footing_pressures is required: the footing pressure of each stage (Pa)");
     q_.resize(n);
     for (PetscInt k = 0; k < n; ++k)
-      PetscCheck(q_[k] > 0 && (k == 0 || q_[k] > q_[k - 1]), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "-footing_pressures must be positive and increasing (entry %d is %g Pa)", (int)k,
-                 q_[k]);
-    PetscCheck(collapse_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-footing_collapse_settlement must be > 0 (got %g)", collapse_);
-    PetscCheck(ramp_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-footing_stage_ramp must be >= 0");
-    PetscCheck(!w_set || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-footing_soil_width must be > 0 m (got %g; default 3 B)", W_);
-    PetscCheck(!d_set || D_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-footing_soil_depth must be > 0 m (got %g; default 2 B)", D_);
+      PmpmCheckInput(q_[k] > 0 && (k == 0 || q_[k] > q_[k - 1]), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                     "-footing_pressures must be positive and increasing (entry %d is %g Pa)",
+                     (int)k, q_[k]);
+    PmpmCheckInput(collapse_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-footing_collapse_settlement must be > 0 (got %g)", collapse_);
+    PmpmCheckInput(ramp_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-footing_stage_ramp must be >= 0");
+    PmpmCheckInput(!w_set || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-footing_soil_width must be > 0 m (got %g; default 3 B)", W_);
+    PmpmCheckInput(!d_set || D_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-footing_soil_depth must be > 0 m (got %g; default 2 B)", D_);
     if (W_ <= 0) W_ = 3 * B_; // reach 3.03 B at phi = 20 deg: set it for such soils
     if (D_ <= 0) D_ = 2 * B_;
     PetscInt nb, nw, nd;
@@ -153,15 +154,16 @@ public:
     sim.face[YMIN] = FaceBC::Fixed;
     sim.mats.resize(1);
     PetscCall(MaterialFromOptions(sim.comm, "soil", sim.mats[0]));
-    PetscCheck(sim.mats[0].model->plastic(), sim.comm, PETSC_ERR_USER_INPUT,
-               "-mat_soil_model must be von_mises or drucker_prager (a footing has a bearing "
-               "capacity only in a soil that yields)");
+    PmpmCheckInput(sim.mats[0].model->plastic(), sim.comm, PETSC_ERR_USER_INPUT,
+                   "-mat_soil_model must be von_mises or drucker_prager (a footing has a bearing "
+                   "capacity only in a soil that yields)");
     const double reach = mechanism_reach(sim);
-    PetscCheck(W_ >= reach, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-footing_soil_width (%g m) must be at least %g m: Prandtl's mechanism reaches "
-               "%.2f B from the centre line for this soil (1.5 B for phi = 0, 3.03 B for 20 deg), "
-               "and a side closer than that raises the capacity",
-               W_, reach, reach / B_);
+    PmpmCheckInput(
+        W_ >= reach, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+        "-footing_soil_width (%g m) must be at least %g m: Prandtl's mechanism reaches "
+        "%.2f B from the centre line for this soil (1.5 B for phi = 0, 3.03 B for 20 deg), "
+        "and a side closer than that raises the capacity",
+        W_, reach, reach / B_);
     PetscFunctionReturn(0);
   }
 

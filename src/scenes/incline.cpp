@@ -59,16 +59,16 @@ public:
     PetscCall(PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, thickness_,
                               &thickness_, nullptr));
     PetscOptionsEnd();
-    PetscCheck(theta_ >= 0 && theta_ <= 80, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-incline_angle must be in [0, 80] degrees (got %g)", theta_);
+    PmpmCheckInput(theta_ >= 0 && theta_ <= 80, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-incline_angle must be in [0, 80] degrees (got %g)", theta_);
     PetscInt n;
     PetscCall(CheckCells(sim.comm, "-incline_base_length", Lbase_, sim.set.h, &sim.ncell[0]));
     PetscCall(CheckCells(sim.comm, "-incline_base_height", Hbase_, sim.set.h, &n));
     PetscCall(CheckCells(sim.comm, "-incline_block_height", Hb_, sim.set.h, &sim.ncell[1]));
     sim.ncell[1] += n + 2;
     PetscCall(CheckCells(sim.comm, "-incline_block_length", Lb_, sim.set.h, &n));
-    PetscCheck(x0_ >= 0 && x0_ + Lb_ <= Lbase_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-incline_block_x: the block must start on the base");
+    PmpmCheckInput(x0_ >= 0 && x0_ + Lb_ <= Lbase_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-incline_block_x: the block must start on the base");
     const double th = theta_ * M_PI / 180;
     sim.set.gdir[0] = std::sin(th);
     sim.set.gdir[1] = -std::cos(th);
@@ -77,20 +77,21 @@ public:
     sim.mats.resize(2);
     PetscCall(MaterialFromOptions(sim.comm, "block", sim.mats[0]));
     PetscCall(MaterialFromOptions(sim.comm, "base", sim.mats[1]));
-    PetscCheck(sim.set.inertia == InertiaScaling::None, sim.comm, PETSC_ERR_USER_INPUT,
-               "the incline is dynamic: use -inertia_scaling none and give -mat_block_density");
+    PmpmCheckInput(sim.set.inertia == InertiaScaling::None, sim.comm, PETSC_ERR_USER_INPUT,
+                   "the incline is dynamic: use -inertia_scaling none and give -mat_block_density");
     if (chain_) {
       const double h = sim.set.h;
-      PetscCheck(x0_ >= h - 1e-9 * h && x0_ + Lb_ <= Lbase_ - h + 1e-9 * h, sim.comm,
-                 PETSC_ERR_ARG_OUTOFRANGE,
-                 "-incline_block_x: with -incline_chain the block must start on the chain, which "
-                 "ends one cell (%g m) inside each end of the base",
-                 h);
+      PmpmCheckInput(
+          x0_ >= h - 1e-9 * h && x0_ + Lb_ <= Lbase_ - h + 1e-9 * h, sim.comm,
+          PETSC_ERR_ARG_OUTOFRANGE,
+          "-incline_block_x: with -incline_chain the block must start on the chain, which "
+          "ends one cell (%g m) inside each end of the base",
+          h);
       ChainSpec cs;
       cs.name = "membrane";
       cs.material = "membrane";
-      PetscCheck(thickness_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "-membrane_thickness must be > 0 (got %g)", thickness_);
+      PmpmCheckInput(thickness_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                     "-membrane_thickness must be > 0 (got %g)", thickness_);
       cs.thickness = thickness_;
       cs.pin_start = cs.pin_end = pin_;
       cs.line = {h, Hbase_, Lbase_ - h, Hbase_};

@@ -211,26 +211,26 @@ public:
     PetscCall(CheckCells(sim.comm, "-landfill_width", W_, sim.set.h, &nW));
     PetscCall(CheckCells(sim.comm, "-landfill_waste_height", Hw_, sim.set.h, &nWaste));
     PetscCall(CheckCells(sim.comm, "-landfill_soil_height", Hs_, sim.set.h, &nS));
-    PetscCheck(!(chain_ && layers_ > 0), sim.comm, PETSC_ERR_ARG_INCOMP,
-               "-landfill_membrane_chain and -landfill_membrane_layers %" PetscInt_FMT
-               " exclude each other",
-               layers_);
+    PmpmCheckInput(!(chain_ && layers_ > 0), sim.comm, PETSC_ERR_ARG_INCOMP,
+                   "-landfill_membrane_chain and -landfill_membrane_layers %" PetscInt_FMT
+                   " exclude each other",
+                   layers_);
     if (layers_ == 0 && !chain_)
       PetscCall(CheckCells(sim.comm,
                            "-landfill_membrane_thickness (with -landfill_membrane_layers 0)", t_,
                            sim.set.h, &nT));
-    PetscCheck(layers_ >= 0 && layers_ <= 16, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-landfill_membrane_layers must be in 0..16 (got %" PetscInt_FMT ")", layers_);
-    PetscCheck(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-landfill_membrane_thickness must be > 0");
+    PmpmCheckInput(layers_ >= 0 && layers_ <= 16, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-landfill_membrane_layers must be in 0..16 (got %" PetscInt_FMT ")", layers_);
+    PmpmCheckInput(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-landfill_membrane_thickness must be > 0");
     // A layer's block is at most one cell thick (PMPM support): t / N > h would leave gaps.
-    PetscCheck(layers_ == 0 || t_ / layers_ <= sim.set.h * (1 + 1e-9), sim.comm,
-               PETSC_ERR_ARG_OUTOFRANGE,
-               "-landfill_membrane_layers %" PetscInt_FMT " gives layers %g m thick, more than "
-               "-cell_size %g m: their blocks would not cover the membrane; use at least %d "
-               "layers (or 0 for the regular fill)",
-               layers_, t_ / layers_, sim.set.h, (int)std::ceil(t_ / sim.set.h - 1e-9));
-    PetscCheck(
+    PmpmCheckInput(layers_ == 0 || t_ / layers_ <= sim.set.h * (1 + 1e-9), sim.comm,
+                   PETSC_ERR_ARG_OUTOFRANGE,
+                   "-landfill_membrane_layers %" PetscInt_FMT " gives layers %g m thick, more than "
+                   "-cell_size %g m: their blocks would not cover the membrane; use at least %d "
+                   "layers (or 0 for the regular fill)",
+                   layers_, t_ / layers_, sim.set.h, (int)std::ceil(t_ / sim.set.h - 1e-9));
+    PmpmCheckInput(
         D_ > 0 && D_ < Hw_ && Xc_ - D_ / 2 > 0 && Xc_ + D_ / 2 < W_, sim.comm,
         PETSC_ERR_ARG_OUTOFRANGE,
         "-landfill_soft_diameter %g / -landfill_soft_x %g: the soft zone must lie inside the "

@@ -50,8 +50,8 @@ public:
     PetscCall(
         PmpmOptionsReal("-width", "Column width (m); default 4 cells", nullptr, W_, &W_, &w_set));
     PetscOptionsEnd();
-    PetscCheck(!w_set || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-layers_width must be > 0 m (got %g; default 4 cells)", W_);
+    PmpmCheckInput(!w_set || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-layers_width must be > 0 m (got %g; default 4 cells)", W_);
     if (W_ <= 0) W_ = 4 * sim.set.h;
     PetscInt nb, nt, nW;
     PetscCall(CheckCells(sim.comm, "-layers_bottom_height", Hb_, sim.set.h, &nb));
@@ -65,8 +65,9 @@ public:
     sim.mats.resize(2);
     PetscCall(MaterialFromOptions(sim.comm, "bottom", sim.mats[0]));
     PetscCall(MaterialFromOptions(sim.comm, "top", sim.mats[1]));
-    PetscCheck(sim.mats[0].gamma > 0 && sim.mats[1].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-mat_bottom_gamma and -mat_top_gamma must be > 0 for layers under self-weight");
+    PmpmCheckInput(sim.mats[0].gamma > 0 && sim.mats[1].gamma > 0, sim.comm,
+                   PETSC_ERR_ARG_OUTOFRANGE,
+                   "-mat_bottom_gamma and -mat_top_gamma must be > 0 for layers under self-weight");
     PetscFunctionReturn(0);
   }
 

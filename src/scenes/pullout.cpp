@@ -81,34 +81,37 @@ public:
         PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
     PetscOptionsEnd();
     const double h = sim.set.h;
-    PetscCheck(P_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-pullout_force must be >= 0 (got %g)",
-               P_);
-    PetscCheck(p_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-pullout_pressure must be > 0 (got %g)",
-               p_);
-    PetscCheck(std::fabs(off_) < h, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-pullout_offset must be within one cell (|dx| < %g m, got %g)", h, off_);
+    PmpmCheckInput(P_ >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-pullout_force must be >= 0 (got %g)", P_);
+    PmpmCheckInput(p_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-pullout_pressure must be > 0 (got %g)", p_);
+    PmpmCheckInput(std::fabs(off_) < h, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-pullout_offset must be within one cell (|dx| < %g m, got %g)", h, off_);
     PetscInt nl, nm, n2h;
     PetscCall(CheckCells(sim.comm, "-pullout_length", L_, h, &nl));
     PetscCall(CheckCells(sim.comm, "-pullout_margin", margin_, h, &nm));
     // the sheet's ends and their reach (one cell) stay clear of the roller nodes
-    PetscCheck(margin_ - std::fabs(off_) >= 2 * h * (1 - 1e-9), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-pullout_margin = %g m leaves the sheet's ends less than 2 cells (%g m) from the "
-               "side faces, whose boundary condition holds every body's nodes",
-               margin_, 2 * h);
+    PmpmCheckInput(
+        margin_ - std::fabs(off_) >= 2 * h * (1 - 1e-9), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+        "-pullout_margin = %g m leaves the sheet's ends less than 2 cells (%g m) from the "
+        "side faces, whose boundary condition holds every body's nodes",
+        margin_, 2 * h);
     PetscCall(CheckCells(sim.comm, "-pullout_block_height (twice it)", 2 * H_, h, &n2h));
-    PetscCheck(n2h % 2 == 1 && n2h >= 3, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-pullout_block_height = %g m: twice it is %" PetscInt_FMT
-               " cells of %g m; it must be an odd number >= 3 so the sheet lies at a cell centre "
-               "(e.g. %g m)",
-               H_, n2h, h, (2 * (n2h / 2) + 1) * 0.5 * h);
+    PmpmCheckInput(
+        n2h % 2 == 1 && n2h >= 3, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+        "-pullout_block_height = %g m: twice it is %" PetscInt_FMT
+        " cells of %g m; it must be an odd number >= 3 so the sheet lies at a cell centre "
+        "(e.g. %g m)",
+        H_, n2h, h, (2 * (n2h / 2) + 1) * 0.5 * h);
     // One particle per cell puts the blocks' particle centres on the two node rows the sheet
     // reaches: the normal force then passes through one row only, the other separates, and the
     // half of the sheet on it slides with no friction (measured: u0 several times the exact).
-    PetscCheck(sim.set.ppc >= 2, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-ppc must be >= 2 for the pullout scene (got %" PetscInt_FMT
-               "): with one particle per cell the pressure passes through one of the sheet's two "
-               "node rows only and the sheet slips freely on the other",
-               sim.set.ppc);
+    PmpmCheckInput(
+        sim.set.ppc >= 2, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+        "-ppc must be >= 2 for the pullout scene (got %" PetscInt_FMT
+        "): with one particle per cell the pressure passes through one of the sheet's two "
+        "node rows only and the sheet slips freely on the other",
+        sim.set.ppc);
     sim.ncell[0] = 2 * nm + nl;
     sim.ncell[1] = n2h;
     sim.origin[0] = sim.origin[1] = 0;

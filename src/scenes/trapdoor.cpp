@@ -119,33 +119,34 @@ public:
                               "stage lowers the door at this steady rate, then holds it",
                               nullptr, rate_, &rate_, nullptr));
     PetscOptionsEnd();
-    PetscCheck(set && n >= 1, sim.comm, PETSC_ERR_USER_INPUT,
-               "-trapdoor_displacements is required: the door displacement of each stage over B");
+    PmpmCheckInput(
+        set && n >= 1, sim.comm, PETSC_ERR_USER_INPUT,
+        "-trapdoor_displacements is required: the door displacement of each stage over B");
     disp_.resize(n);
     for (PetscInt k = 0; k < n; ++k)
-      PetscCheck(disp_[k] > 0 && disp_[k] <= 0.5 && (k == 0 || disp_[k] > disp_[k - 1]), sim.comm,
-                 PETSC_ERR_ARG_OUTOFRANGE,
-                 "-trapdoor_displacements must be increasing and in (0, 0.5] (entry %d is %g)",
-                 (int)k, disp_[k]);
-    PetscCheck(B_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-trapdoor_width must be > 0 (got %g)",
-               B_);
-    PetscCheck(rate_ > 0 && rate_ <= 0.01, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-trapdoor_rate must be in (0, 0.01] cells per step (got %g)", rate_);
+      PmpmCheckInput(disp_[k] > 0 && disp_[k] <= 0.5 && (k == 0 || disp_[k] > disp_[k - 1]),
+                     sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                     "-trapdoor_displacements must be increasing and in (0, 0.5] (entry %d is %g)",
+                     (int)k, disp_[k]);
+    PmpmCheckInput(B_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-trapdoor_width must be > 0 (got %g)", B_);
+    PmpmCheckInput(rate_ > 0 && rate_ <= 0.01, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-trapdoor_rate must be in (0, 0.01] cells per step (got %g)", rate_);
     // given, they must be > 0 (0 is not "the default")
-    PetscCheck(!hset || H_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-trapdoor_height must be > 0 m, whole cells (got %g; default 2 B)", H_);
-    PetscCheck(!wset || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-trapdoor_soil_width must be > 0 m, >= B, whole cells (got %g; default B/2 + "
-               "max(B, 1.5 H))",
-               W_);
+    PmpmCheckInput(!hset || H_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-trapdoor_height must be > 0 m, whole cells (got %g; default 2 B)", H_);
+    PmpmCheckInput(!wset || W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-trapdoor_soil_width must be > 0 m, >= B, whole cells (got %g; default B/2 + "
+                   "max(B, 1.5 H))",
+                   W_);
     if (H_ <= 0) H_ = 2 * B_;
     if (W_ <= 0) W_ = 0.5 * B_ + std::max(B_, 1.5 * H_);
     PetscInt nb, nw, nh;
     PetscCall(CheckCells(sim.comm, "-trapdoor_width / 2", 0.5 * B_, sim.set.h, &nb));
     PetscCall(CheckCells(sim.comm, "-trapdoor_height", H_, sim.set.h, &nh));
     PetscCall(CheckCells(sim.comm, "-trapdoor_soil_width", W_, sim.set.h, &nw));
-    PetscCheck(W_ >= B_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-trapdoor_soil_width (%g m) must be at least the door width %g m", W_, B_);
+    PmpmCheckInput(W_ >= B_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-trapdoor_soil_width (%g m) must be at least the door width %g m", W_, B_);
     // room below the base for the soil that follows the door: its largest displacement + 2 cells
     base_j_ = static_cast<PetscInt>(std::ceil(disp_.back() * B_ / sim.set.h - 1e-9)) + 2;
     sim.origin[0] = 0;
@@ -158,11 +159,11 @@ public:
     sim.mats.resize(1);
     PetscCall(MaterialFromOptions(sim.comm, "soil", sim.mats[0]));
     const auto *dp = dynamic_cast<const DruckerPrager *>(sim.mats[0].model.get());
-    PetscCheck(dp && dp->params().phi_deg > 0, sim.comm, PETSC_ERR_USER_INPUT,
-               "-mat_soil_model must be drucker_prager with -mat_soil_friction_angle > 0 (the "
-               "soil arches by friction)");
-    PetscCheck(sim.mats[0].gamma > 0, sim.comm, PETSC_ERR_USER_INPUT,
-               "-mat_soil_gamma must be > 0: the soil's weight is the door's load");
+    PmpmCheckInput(dp && dp->params().phi_deg > 0, sim.comm, PETSC_ERR_USER_INPUT,
+                   "-mat_soil_model must be drucker_prager with -mat_soil_friction_angle > 0 (the "
+                   "soil arches by friction)");
+    PmpmCheckInput(sim.mats[0].gamma > 0, sim.comm, PETSC_ERR_USER_INPUT,
+                   "-mat_soil_gamma must be > 0: the soil's weight is the door's load");
     // the supports: every node at or below the base; the door's (i <= nb) move, share 1 (1/2 at
     // the edge) of the door's speed, and weigh the door's force by that share
     PrescribedVelocity &pv = sim.prescribed;

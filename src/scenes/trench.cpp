@@ -196,16 +196,18 @@ public:
     PetscCall(CheckCells(sim.comm, "-trench_base_height", Hb_, h, &nHb));
     PetscCall(CheckCells(sim.comm, "-trench_anchorage", La_, h, &nLa));
     PetscCall(CheckCells(sim.comm, "-trench_margin", margin_, h, &nM));
-    PetscCheck(nD < nHb, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-trench_depth %g must be less than -trench_base_height %g (the trench has a floor)",
-               D_, Hb_);
-    PetscCheck((offset_ == 0 || offset_ == 0.5) && std::fmod(offset_ * sim.set.ppc, 1.0) == 0,
-               sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-trench_surface_offset must be 0 or 0.5, and 0.5 needs an even -ppc (no particle "
-               "centre on a face; got %g with -ppc %" PetscInt_FMT ")",
-               offset_, sim.set.ppc);
-    PetscCheck(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-membrane_thickness must be > 0 (got %g)", t_);
+    PmpmCheckInput(
+        nD < nHb, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+        "-trench_depth %g must be less than -trench_base_height %g (the trench has a floor)", D_,
+        Hb_);
+    PmpmCheckInput(
+        (offset_ == 0 || offset_ == 0.5) && std::fmod(offset_ * sim.set.ppc, 1.0) == 0, sim.comm,
+        PETSC_ERR_ARG_OUTOFRANGE,
+        "-trench_surface_offset must be 0 or 0.5, and 0.5 needs an even -ppc (no particle "
+        "centre on a face; got %g with -ppc %" PetscInt_FMT ")",
+        offset_, sim.set.ppc);
+    PmpmCheckInput(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-membrane_thickness must be > 0 (got %g)", t_);
     // x: the trench centred at W / 2
     W_ = B_ + 2 * La_ + 2 * margin_;
     xc_ = 0.5 * W_;
@@ -222,8 +224,8 @@ public:
     sim.mats.resize(2);
     PetscCall(MaterialFromOptions(sim.comm, "base", sim.mats[BASE]));
     PetscCall(MaterialFromOptions(sim.comm, "cover", sim.mats[COVER]));
-    PetscCheck(sim.mats[COVER].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-mat_cover_gamma must be > 0 (the cover's weight is the load)");
+    PmpmCheckInput(sim.mats[COVER].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-mat_cover_gamma must be > 0 (the cover's weight is the load)");
     // Terzaghi's phi: the cover's own friction angle when it has one
     PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-mat_cover_friction_angle", &phi_, nullptr));
     PetscOptionsBegin(sim.comm, "trench_", "Trench: closed forms", nullptr);
@@ -232,8 +234,8 @@ public:
                               "-mat_cover_friction_angle, else 30)",
                               nullptr, phi_, &phi_, nullptr));
     PetscOptionsEnd();
-    PetscCheck(phi_ > 0 && phi_ < 90, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-trench_terzaghi_phi must be in (0, 90) degrees (got %g)", phi_);
+    PmpmCheckInput(phi_ > 0 && phi_ < 90, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-trench_terzaghi_phi must be in (0, 90) degrees (got %g)", phi_);
     ChainSpec cs;
     cs.name = "membrane";
     cs.material = "membrane";
