@@ -40,22 +40,26 @@ def help_text(exe, opts):
     return p.stdout
 
 
-def scene_table(exe):
-    """The scene table (name -> one-line description) `pmpm -help` prints without a scene."""
+def help_tables(exe):
+    """The scene and material law tables (name -> one-line description) `pmpm -help` prints
+    without a scene."""
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     p = subprocess.run([str(exe), "-help"], cwd=ROOT, env=env, stdout=subprocess.PIPE,
                        stderr=subprocess.STDOUT, text=True, timeout=600)
     if p.returncode != 0:
         sys.exit(f"options_reference: {exe} -help failed (exit {p.returncode}):\n{p.stdout[-2000:]}")
-    out = OrderedDict()
     lines = p.stdout.split("\n")
-    start = next((i for i, ln in enumerate(lines) if ln.startswith("Scenes (")), len(lines))
-    for ln in lines[start + 1:]:
-        m = re.match(r"^  ([a-z_0-9]+)\s+(.*)$", ln)
-        if not m:
-            break
-        out[m.group(1)] = m.group(2).strip()
-    return out
+
+    def table_after(head):
+        out = OrderedDict()
+        start = next((i for i, ln in enumerate(lines) if ln.startswith(head)), len(lines))
+        for ln in lines[start + 1:]:
+            m = re.match(r"^  ([a-z_0-9]+)\s+(.*)$", ln)
+            if not m:
+                break
+            out[m.group(1)] = m.group(2).strip()
+        return out
+    return table_after("Scenes ("), table_after("Material laws (")
 
 
 def default_of(m):
@@ -90,7 +94,10 @@ def blocks(text):
             if m.group("man") != "None":
                 ours = False
                 break
-            entries[m.group("name")] = (default_of(m), m.group("text").strip())
+            name, text = m.group("name"), m.group("text").strip()
+            if name in entries and text not in entries[name][1]:  # read by two material laws
+                text = entries[name][1] + "; " + text
+            entries[name] = (default_of(m), text)
         if ours and entries:
             out.setdefault(title, OrderedDict()).update(entries)
     return out
@@ -126,7 +133,7 @@ def merge(dst, src):
 
 
 def generate(exe):
-    table_of_scenes = scene_table(exe)
+    table_of_scenes, table_of_laws = help_tables(exe)
     files = sorted((ROOT / "options").glob("*.opts"))
     per_file = OrderedDict()
     scene_of = {}
@@ -162,6 +169,7 @@ def generate(exe):
           "## Contents",
           "",
           "- [Scenes](#scenes)",
+          "- [Material laws](#material-laws)",
           "- [Options of every run](#options-of-every-run)"]
     for scene in scenes:
         md.append(f"- [Scene `{scene}`](#scene-{scene})")
@@ -170,6 +178,12 @@ def generate(exe):
            "`pmpm -scene NAME -help` lists a scene's options without an options file.", "",
            "| scene | what it is |", "|---|---|"]
     md += [f"| `{s}` | {cell(d)} |" for s, d in table_of_scenes.items()]
+    md += ["", "## Material laws", "",
+           "The law table of `src/materials/registry.cpp`: the values of `-mat_<name>_model` "
+           "(the first is the default). Each material's block lists every law's own options "
+           "(`-help` reads them all); a run reads its law's only.", "",
+           "| law | what it is |", "|---|---|"]
+    md += [f"| `{s}` | {cell(d)} |" for s, d in table_of_laws.items()]
     md += ["", "## Options of every run", ""]
     for title, entries in common.items():
         md += [f"### {cell(title)}", ""] + table(entries, common=True) + [""]

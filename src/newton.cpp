@@ -651,24 +651,9 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver &ns) {
   ns.model.assign(sim.mats.size(), TangentModel{});
   for (size_t k = 0; k < sim.mats.size(); ++k) {
     const Material &m = *sim.mats[k].model;
-    TangentModel &tm = ns.model[k];
-    tm.el = sim.mats[k].el;
-    if (!std::strcmp(m.model(), "linear_elastic")) tm.kind = TangentKind::LinearElastic;
-    if (!std::strcmp(m.model(), "neo_hookean")) tm.kind = TangentKind::NeoHookean;
-    if (const auto *vm = dynamic_cast<const VonMises *>(&m)) {
-      tm.kind = TangentKind::VonMises;
-      tm.vm = vm->params();
-      tm.el = tm.vm.el;
-    }
-    if (const auto *dp = dynamic_cast<const DruckerPrager *>(&m)) {
-      tm.kind = TangentKind::DruckerPrager;
-      tm.dp = dp->params();
-      tm.dpk = dp->coefficients();
-      tm.el = tm.dp.el;
-    }
-    PetscCheck(tm.kind != TangentKind::None, sim.comm, PETSC_ERR_SUP,
-               "-solver newton does not support -mat_%s_model %s yet (no consistent tangent; "
-               "linear_elastic, neo_hookean, von_mises and drucker_prager have one)%s",
+    PetscCheck(m.tangent(ns.model[k]), sim.comm, PETSC_ERR_SUP,
+               "-solver newton does not support -mat_%s_model %s yet (it has no consistent "
+               "tangent)%s",
                sim.mats[k].name.c_str(), m.model(), fix);
   }
   PetscFunctionReturn(0);

@@ -1,9 +1,7 @@
 // Setup of a run: the common options, the scene, the materials, the grid and the particles.
 #include "pmpm/options.hpp"
 #include "pmpm/simulation.hpp"
-#include "pmpm/materials/drucker_prager.hpp"
-#include "pmpm/materials/elastic.hpp"
-#include "pmpm/materials/von_mises.hpp"
+#include "pmpm/materials/registry.hpp"
 #include "pmpm/newton.hpp"
 #include "pmpm/prerun.hpp"
 #include <algorithm>
@@ -195,13 +193,6 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscFunctionReturn(0);
 }
 
-// The material table: one entry per model.
-enum class MaterialModel { LinearElastic = 0, NeoHookean = 1, DruckerPrager = 2, VonMises = 3 };
-const char *const MaterialModelNames[] = {"linear_elastic", "neo_hookean",   "drucker_prager",
-                                          "von_mises",      "MaterialModel", "MODEL_",
-                                          nullptr};
-const char *const DPMatchNames[] = {"outer", "inner", "plane_strain", "DPMatch", "DP_", nullptr};
-constexpr double kMaxModulus = 1e13;    // Pa: moduli, strengths, hardening
 constexpr double kMaxUnitWeight = 1e12; // N/m^3 (gamma) and kg/m^3 (density)
 // A material faster than this (sqrt(M / density), m/s; steel's P wave is 6e3 m/s) is a typo
 // in -mat_<name>_E or its density: its time step would be absurdly small.
@@ -209,19 +200,22 @@ constexpr double kMaxWaveSpeed = 1e6;
 
 } // namespace
 
+// A material: its law (-mat_<name>_model, from the law table materials/registry.hpp), the options
+// every material has, then its law's own; under -help every law's, so that all are listed.
 PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, MaterialEntry &m) {
   const std::string prefix = "mat_" + name + "_";
-  MaterialModel model = MaterialModel::LinearElastic;
+  const std::vector<MaterialLaw> &laws = MaterialLaws();
+  PetscEnum model = (PetscEnum)0;
   PetscBool hasE = PETSC_FALSE, hasnu = PETSC_FALSE;
   PetscFunctionBeginUser;
   m.name = name;
   m.density = 0;
-  DruckerPragerParams dp;
-  dp.tension_cutoff = std::numeric_limits<double>::infinity();
-  VonMisesParams vm;
+  std::vector<std::unique_ptr<LawOptions>> law_options;
+  for (const MaterialLaw &l : laws) law_options.push_back(l.options());
+  const bool help = ListingHelp();
   PetscOptionsBegin(comm, prefix.c_str(), ("Material " + name).c_str(), nullptr);
-  PetscCall(PmpmOptionsEnum("-model", "Constitutive model", nullptr, MaterialModelNames,
-                            (PetscEnum)model, (PetscEnum *)&model, nullptr));
+  PetscCall(PmpmOptionsEnum("-model", "Constitutive model (the material laws: pmpm -help)", nullptr,
+                            MaterialLawNames(), model, &model, nullptr));
   PetscCall(PmpmOptionsReal("-E", "Young's modulus (Pa), > 0", nullptr, m.el.E, &m.el.E, &hasE));
   PetscCall(
       PmpmOptionsReal("-nu", "Poisson's ratio, -1 < nu < 0.5", nullptr, m.el.nu, &m.el.nu, &hasnu));
@@ -231,29 +225,8 @@ PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, Mater
                             "Inertial density (kg/m^3), > 0; ignored under "
                             "-inertia_scaling wave_speed",
                             nullptr, m.density, &m.density, nullptr));
-  if (model == MaterialModel::DruckerPrager) {
-    PetscCall(PmpmOptionsReal("-cohesion", "Drucker-Prager cohesion c (Pa), >= 0", nullptr,
-                              dp.cohesion, &dp.cohesion, nullptr));
-    PetscCall(PmpmOptionsReal("-friction_angle", "Friction angle phi (degrees), 0..60", nullptr,
-                              dp.phi_deg, &dp.phi_deg, nullptr));
-    PetscCall(PmpmOptionsReal("-dilation_angle", "Dilation angle psi (degrees), 0..phi", nullptr,
-                              dp.psi_deg, &dp.psi_deg, nullptr));
-    PetscCall(PmpmOptionsReal("-hardening", "Linear hardening of cohesion dc/deps_p (Pa), >= 0",
-                              nullptr, dp.hardening, &dp.hardening, nullptr));
-    PetscCall(PmpmOptionsReal("-tension_cutoff",
-                              "Largest mean stress p (Pa, tension > 0); "
-                              "default none",
-                              nullptr, dp.tension_cutoff, &dp.tension_cutoff, nullptr));
-    PetscCall(PmpmOptionsEnum("-match", "Mohr-Coulomb matching: outer, inner, plane_strain",
-                              nullptr, DPMatchNames, (PetscEnum)dp.match, (PetscEnum *)&dp.match,
-                              nullptr));
-  }
-  if (model == MaterialModel::VonMises) {
-    PetscCall(PmpmOptionsReal("-yield_stress", "von Mises initial yield stress (Pa), > 0", nullptr,
-                              vm.sigma_y0, &vm.sigma_y0, nullptr));
-    PetscCall(PmpmOptionsReal("-hardening", "Linear isotropic hardening modulus H (Pa), >= 0",
-                              nullptr, vm.hardening, &vm.hardening, nullptr));
-  }
+  for (size_t k = 0; k < laws.size(); ++k)
+    if (k == (size_t)model || help) PetscCall(law_options[k]->read(PetscOptionsObject));
   PetscOptionsEnd();
   PmpmCheckInput(hasE, comm, PETSC_ERR_USER_INPUT, "-%sE is required (Young's modulus in Pa)",
                  prefix.c_str());
@@ -272,43 +245,7 @@ PetscErrorCode MaterialFromOptions(MPI_Comm comm, const std::string &name, Mater
   PmpmCheckInput(m.density >= 0 && m.density <= kMaxUnitWeight, comm, PETSC_ERR_ARG_OUTOFRANGE,
                  "-%sdensity must be in (0, %g] kg/m^3 (got %g)", prefix.c_str(), kMaxUnitWeight,
                  m.density);
-  switch (model) {
-  case MaterialModel::LinearElastic:
-    m.model = std::make_unique<LinearElastic>(m.el);
-    break;
-  case MaterialModel::NeoHookean:
-    m.model = std::make_unique<NeoHookean>(m.el);
-    break;
-  case MaterialModel::DruckerPrager:
-    PmpmCheckInput(dp.cohesion >= 0 && dp.cohesion <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-%scohesion must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
-                   dp.cohesion);
-    PmpmCheckInput(dp.phi_deg >= 0 && dp.phi_deg <= 60, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-%sfriction_angle must be in [0, 60] degrees (got %g)", prefix.c_str(),
-                   dp.phi_deg);
-    PmpmCheckInput(dp.psi_deg >= 0 && dp.psi_deg <= dp.phi_deg, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-%sdilation_angle must be in [0, friction_angle] (got %g)", prefix.c_str(),
-                   dp.psi_deg);
-    PmpmCheckInput(dp.hardening >= 0 && dp.hardening <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-%shardening must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
-                   dp.hardening);
-    PmpmCheckInput(dp.phi_deg > 0 || dp.cohesion > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-%scohesion and -%sfriction_angle cannot both be 0", prefix.c_str(),
-                   prefix.c_str());
-    dp.el = m.el;
-    m.model = std::make_unique<DruckerPrager>(dp);
-    break;
-  case MaterialModel::VonMises:
-    PmpmCheckInput(vm.sigma_y0 > 0 && vm.sigma_y0 <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-%syield_stress must be in (0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
-                   vm.sigma_y0);
-    PmpmCheckInput(vm.hardening >= 0 && vm.hardening <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-%shardening must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
-                   vm.hardening);
-    vm.el = m.el;
-    m.model = std::make_unique<VonMises>(vm);
-    break;
-  }
+  PetscCall(law_options[model]->make(comm, prefix, m.el, m.model));
   PetscFunctionReturn(0);
 }
 
@@ -471,6 +408,9 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
         PetscPrintf(sim.comm, "Scenes (-scene NAME; -scene NAME -help lists its options):\n"));
     for (const SceneEntry &e : Scenes())
       PetscCall(PetscPrintf(sim.comm, "  %-10s %s\n", e.name, e.description));
+    PetscCall(PetscPrintf(sim.comm, "Material laws (-mat_<name>_model LAW):\n"));
+    for (const MaterialLaw &l : MaterialLaws())
+      PetscCall(PetscPrintf(sim.comm, "  %-15s %s\n", l.name, l.description));
   }
   PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
   PetscCall(PmpmOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,

@@ -1,7 +1,7 @@
 """-help lists a scene's options without a complete scene (PETSc's convention: list, run nothing,
 exit 0): for every scene, `pmpm -scene X -help` alone, with no options file, must exit 0, write
 nothing, and list the global options, the scene's own (-X_...), its materials' (-mat_..._model and
-every law's options) and the Newton solver's. The scenes are the ones pmpm names when -scene is
+every material law's options) and the Newton solver's. The scenes are the ones pmpm names when -scene is
 unknown; every options/*.opts must use one of them. `pmpm -help` without a scene lists the global
 options and the scenes.
 
@@ -57,6 +57,16 @@ c.check("-help without a scene exits 0 and lists the global options and every sc
         code == 0 and all(listed(log, o) for o in GLOBAL) and all(s in log for s in scenes),
         f"(exit {code})")
 
+# the laws' own options (src/materials/*.cpp): Drucker-Prager's, von Mises'
+LAW_OPTIONS = ["cohesion", "friction_angle", "dilation_angle", "tension_cutoff", "match",
+               "yield_stress", "hardening"]
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+code, log = pmpm(["-options_file", os.path.join(ROOT, "options", "column.opts"),
+                  "-mat_column_model", "no_such_law"])
+c.check("an unknown -mat_<name>_model is refused (exit 1) naming the laws",
+        code == 1 and all(x in log for x in ("linear_elastic", "neo_hookean", "drucker_prager",
+                                             "von_mises")), f"(exit {code}: {log.strip()[-300:]})")
+
 for s in scenes:
     code, log = pmpm(["-scene", s, "-help"])
     own = sorted(set(re.findall(rf"^  (-{s}_[a-z_0-9]+):? <", log, re.M)))
@@ -64,9 +74,12 @@ for s in scenes:
     sheets = re.findall(r"^  -mat_[a-z_0-9]+_law <", log, re.M)  # membrane chains' materials
     ok = (code == 0 and "pmpm: error" not in log and own and (mats or sheets)
           and all(listed(log, o) for o in GLOBAL + ["-newton_load_steps", "-interface_type"])
-          and all(listed(log, f"{m[:-6]}_E") for m in mats))
+          and all(listed(log, f"{m[:-6]}_E") for m in mats)
+          # every material law's own options for each material (the law table)
+          and all(listed(log, f"{m[:-6]}_{o}") for m in mats for o in LAW_OPTIONS))
     c.check(f"-scene {s} -help: exit 0, its {len(own)} -{s}_* options, {len(mats)} materials "
-            f"({len(sheets)} membranes), the global and Newton options", ok,
+            f"with every law's options ({len(sheets)} membranes), the global and Newton options",
+            ok,
             f"(exit {code}{': ' + log.strip()[-300:] if code else ''})")
 c.check("-help wrote nothing", os.listdir(out) == [], f"({os.listdir(out)})")
 c.done()

@@ -13,6 +13,8 @@
 
 namespace pmpm {
 
+struct TangentModel; // implicit_kernels.hpp: what -solver newton's consistent tangent needs
+
 // Plain views over particle arrays; idx lists the particles this material owns.
 struct StressBatch {
   int n = 0;                    // number of particles in idx
@@ -61,6 +63,9 @@ public:
   // update the stress in its own particle loop (elastic_rate_update, elastic.hpp). False for
   // every other model.
   virtual bool linear_elastic_rate(double & /*lambda*/, double & /*G2*/) const { return false; }
+  // -solver newton: what the consistent tangent (piola_tangent, implicit_kernels.hpp) needs of
+  // this model, set once per material before the solve. False: the model has none (refused).
+  virtual bool tangent(TangentModel & /*tm*/) const { return false; }
 };
 
 // Small-strain increment and spin from L*dt (3x3, plane strain: zz rows/cols zero).

@@ -24,7 +24,11 @@
 #pragma once
 #include "pmpm/material.hpp"
 #include "pmpm/materials/return_map.hpp"
+#include <petscsys.h>
 #include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
 
 namespace pmpm {
 
@@ -250,8 +254,19 @@ inline ReturnDerivative drucker_prager_return_derivative(const DruckerPragerPara
 // increment C:de (trial), then return (same as LinearElastic plus the return map).
 class DruckerPrager final : public Material {
 public:
+  static constexpr const char *kName = "drucker_prager";
+  // its el is not an option (set by Create); no tension cut-off unless -tension_cutoff is given
+  struct Options : DruckerPragerParams {
+    Options() { tension_cutoff = std::numeric_limits<double>::infinity(); }
+  };
+  // -cohesion, -friction_angle, -dilation_angle, -hardening, -tension_cutoff, -match
+  // (src/materials/drucker_prager.cpp)
+  static PetscErrorCode ReadOptions(PetscOptionItems *items, Options &o);
+  static PetscErrorCode Create(MPI_Comm comm, const std::string &prefix, const ElasticConstants &el,
+                               const Options &o, std::unique_ptr<Material> &model);
   explicit DruckerPrager(const DruckerPragerParams &prm) : prm_(prm), k_(dp_coefficients(prm)) {}
-  const char *model() const override { return "drucker_prager"; }
+  const char *model() const override { return kName; }
+  bool tangent(TangentModel &tm) const override;
   double wave_modulus() const override { return prm_.el.M(); }
   bool plastic() const override { return true; }
   bool dilatant() const override { return prm_.psi_deg > 0; }

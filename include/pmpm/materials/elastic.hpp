@@ -1,7 +1,10 @@
 // Linear elastic (hypoelastic, Jaumann rate) and compressible neo-Hookean materials.
 #pragma once
 #include "pmpm/material.hpp"
+#include <petscsys.h>
 #include <cmath>
+#include <memory>
+#include <string>
 
 namespace pmpm {
 
@@ -24,8 +27,14 @@ inline void elastic_rate_update(double lam, double G2, const double g[DIM * DIM]
 // Exact for small strain; objective under large rotation.
 class LinearElastic final : public Material {
 public:
+  static constexpr const char *kName = "linear_elastic";
+  struct Options {}; // -E and -nu only (every material's)
+  static PetscErrorCode ReadOptions(PetscOptionItems *, Options &) { return 0; }
+  static PetscErrorCode Create(MPI_Comm comm, const std::string &prefix, const ElasticConstants &el,
+                               const Options &o, std::unique_ptr<Material> &model);
   explicit LinearElastic(const ElasticConstants &c) : c_(c) {}
-  const char *model() const override { return "linear_elastic"; }
+  const char *model() const override { return kName; }
+  bool tangent(TangentModel &tm) const override;
   double wave_modulus() const override { return c_.M(); }
   bool linear_elastic_rate(double &lam, double &G2) const override {
     lam = c_.lambda();
@@ -65,8 +74,14 @@ inline Mat3 neo_hookean_stress(const ElasticConstants &c, const double *Fp) {
 
 class NeoHookean final : public Material {
 public:
+  static constexpr const char *kName = "neo_hookean";
+  struct Options {}; // -E and -nu only (every material's)
+  static PetscErrorCode ReadOptions(PetscOptionItems *, Options &) { return 0; }
+  static PetscErrorCode Create(MPI_Comm comm, const std::string &prefix, const ElasticConstants &el,
+                               const Options &o, std::unique_ptr<Material> &model);
   explicit NeoHookean(const ElasticConstants &c) : c_(c) {}
-  const char *model() const override { return "neo_hookean"; }
+  const char *model() const override { return kName; }
+  bool tangent(TangentModel &tm) const override;
   double wave_modulus() const override { return c_.M(); }
   bool rate_form() const override { return false; }
   void update_stress(const StressBatch &b) const override {

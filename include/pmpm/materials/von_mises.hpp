@@ -9,6 +9,9 @@
 #pragma once
 #include "pmpm/material.hpp"
 #include "pmpm/materials/return_map.hpp"
+#include <petscsys.h>
+#include <memory>
+#include <string>
 
 namespace pmpm {
 
@@ -69,8 +72,15 @@ inline ReturnDerivative von_mises_return_derivative(const VonMisesParams &prm, c
 // increment C:de (trial), then return (same as LinearElastic plus the return map).
 class VonMises final : public Material {
 public:
+  static constexpr const char *kName = "von_mises";
+  using Options = VonMisesParams; // its el is not an option (set by Create)
+  // -yield_stress, -hardening (src/materials/von_mises.cpp)
+  static PetscErrorCode ReadOptions(PetscOptionItems *items, Options &o);
+  static PetscErrorCode Create(MPI_Comm comm, const std::string &prefix, const ElasticConstants &el,
+                               const Options &o, std::unique_ptr<Material> &model);
   explicit VonMises(const VonMisesParams &prm) : prm_(prm) {}
-  const char *model() const override { return "von_mises"; }
+  const char *model() const override { return kName; }
+  bool tangent(TangentModel &tm) const override;
   double wave_modulus() const override { return prm_.el.M(); }
   bool plastic() const override { return true; }
   const VonMisesParams &params() const { return prm_; }

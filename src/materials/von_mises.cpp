@@ -1,0 +1,42 @@
+// von Mises: its options, their checks, and what its Newton tangent needs.
+#include "pmpm/materials/von_mises.hpp"
+#include "pmpm/implicit_kernels.hpp"
+#include "pmpm/materials/registry.hpp"
+#include "pmpm/options.hpp"
+
+namespace pmpm {
+
+PetscErrorCode VonMises::ReadOptions(PetscOptionItems *PetscOptionsObject, Options &vm) {
+  PetscFunctionBeginUser;
+  PetscCall(PmpmOptionsReal("-yield_stress", "von_mises: initial yield stress (Pa), > 0", nullptr,
+                            vm.sigma_y0, &vm.sigma_y0, nullptr));
+  PetscCall(PmpmOptionsReal("-hardening",
+                            "von_mises: linear isotropic hardening modulus H (Pa), >= 0", nullptr,
+                            vm.hardening, &vm.hardening, nullptr));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode VonMises::Create(MPI_Comm comm, const std::string &prefix,
+                                const ElasticConstants &el, const Options &o,
+                                std::unique_ptr<Material> &model) {
+  PetscFunctionBeginUser;
+  PmpmCheckInput(o.sigma_y0 > 0 && o.sigma_y0 <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-%syield_stress must be in (0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
+                 o.sigma_y0);
+  PmpmCheckInput(o.hardening >= 0 && o.hardening <= kMaxModulus, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-%shardening must be in [0, %g] Pa (got %g)", prefix.c_str(), kMaxModulus,
+                 o.hardening);
+  VonMisesParams vm = o;
+  vm.el = el;
+  model = std::make_unique<VonMises>(vm);
+  PetscFunctionReturn(0);
+}
+
+bool VonMises::tangent(TangentModel &tm) const {
+  tm.kind = TangentKind::VonMises;
+  tm.vm = prm_;
+  tm.el = prm_.el;
+  return true;
+}
+
+} // namespace pmpm
