@@ -2,6 +2,7 @@
 // transfers.cpp or a material's batch update; PETSc appears only for the ghost exchanges and the
 // migration.
 #include "pmpm/cycle.hpp"
+#include "pmpm/log_event.hpp"
 #include "pmpm/antilock.hpp"
 #include "pmpm/degradation.hpp"
 #include "pmpm/shape_cpgimp.hpp"
@@ -26,37 +27,36 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   //    volume change averaged over them in step 5'.
   const double *pshift = nullptr;
   if (sim.set.fbar) {
-    PetscCall(PetscLogEventBegin(ev_fbar, 0, 0, 0, 0));
+    PmpmLogEventScope(ev_fbar);
     fbar_groups(P, g.origin, g.h, g.cell_lo, g.cell_hi, g.nbody, sim.fbar_group);
     if (sim.set.fbar_pressure == FbarPressure::Cell) {
       fbar_pressure_shift(P, sim.fbar_group, sim.fbar_sums, sim.fbar_shift);
       pshift = sim.fbar_shift.data();
     }
-    PetscCall(PetscLogEventEnd(ev_fbar, 0, 0, 0, 0));
   }
 
   // 1. Particles to grid: mass, momentum, internal and external force (eq. 7-9, 14).
-  PetscCall(PetscLogEventBegin(ev_p2g, 0, 0, 0, 0));
-  PetscCall(GridGetLocal(g, true, G));
-  p2g<Shape>(P, load, G, nullptr, 0, pshift);
-  if (!sim.traction_idx.empty())
-    p2g_traction<Shape>(P, sim.loads, sim.traction_idx, load.factor, G);
-  PetscCall(GridRestoreLocal(g, G));
-  PetscCall(PetscLogEventEnd(ev_p2g, 0, 0, 0, 0));
+  {
+    PmpmLogEventScope(ev_p2g);
+    PetscCall(GridGetLocal(g, true, G));
+    p2g<Shape>(P, load, G, nullptr, 0, pshift);
+    if (!sim.traction_idx.empty())
+      p2g_traction<Shape>(P, sim.loads, sim.traction_idx, load.factor, G);
+    PetscCall(GridRestoreLocal(g, G));
+  }
   // 1a. Membrane chains: their points' mass, momentum, axial and external forces into their own
   //     body's block, and their geometry (normals, length) into their slots.
   if (!sim.chains.empty()) {
-    PetscCall(PetscLogEventBegin(ev_chain, 0, 0, 0, 0));
+    PmpmLogEventScope(ev_chain);
     PetscCall(GridGetLocal(g, false, G));
     for (const Chain &c : sim.chains) p2g_chain(c, load, G, g);
     PetscCall(GridRestoreLocal(g, G));
-    PetscCall(PetscLogEventEnd(ev_chain, 0, 0, 0, 0));
   }
   // 1b. Interface: body 1's own mass, momentum, force, and its colour gradient (the normals).
   Grid &gb = sim.iface_grid.body;
   const bool iface = sim.iface_grid.active;
   if (iface) {
-    PetscCall(PetscLogEventBegin(ev_iface, 0, 0, 0, 0));
+    PmpmLogEventScope(ev_iface);
     const PetscInt nb = static_cast<PetscInt>(sim.iface_idx.size());
     PetscCall(GridGetLocal(gb, true, G));
     p2g<Shape>(P, load, G, sim.iface_idx.data(), nb, pshift);
@@ -65,18 +65,18 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     else
       p2g_colour_gradient<Shape>(P, sim.iface_idx.data(), nb, G); // in FEXT slots
     PetscCall(GridRestoreLocal(gb, G));
-    PetscCall(PetscLogEventEnd(ev_iface, 0, 0, 0, 0));
   }
 
   // 2. Sum the ghost contributions across ranks.
-  PetscCall(PetscLogEventBegin(ev_l2g, 0, 0, 0, 0));
-  PetscCall(GridLocalToGlobalAdd(g));
-  if (iface) PetscCall(GridLocalToGlobalAdd(gb));
-  PetscCall(PetscLogEventEnd(ev_l2g, 0, 0, 0, 0));
+  {
+    PmpmLogEventScope(ev_l2g);
+    PetscCall(GridLocalToGlobalAdd(g));
+    if (iface) PetscCall(GridLocalToGlobalAdd(gb));
+  }
   // 2b. The paper's normals: central differences of the cell-average colour need the
   //     neighbouring cells' sums, one more ghost exchange of the body grid.
   if (iface && sim.iface.normals == InterfaceNormals::Cells) {
-    PetscCall(PetscLogEventBegin(ev_iface, 0, 0, 0, 0));
+    PmpmLogEventScope(ev_iface);
     GridView C, B;
     PetscCall(GridGlobalToLocal(gb));
     PetscCall(GridGetLocal(gb, false, C));
@@ -84,11 +84,9 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     cell_colour_normals(C, B);
     PetscCall(GridRestoreGlobal(gb, B));
     PetscCall(GridRestoreLocal(gb, C));
-    PetscCall(PetscLogEventEnd(ev_iface, 0, 0, 0, 0));
   }
 
   // 3. Nodal momentum balance with damping and boundary conditions (eq. 1-2).
-  PetscCall(PetscLogEventBegin(ev_grid, 0, 0, 0, 0));
   GridUpdateParams gp;
   gp.dt = dt;
   gp.damping_alpha = (sim.set.damping == Damping::Local || sim.set.damping == Damping::Both)
@@ -102,12 +100,14 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     gp.fire_mix = r.fire_mix;
     gp.fire_scale = r.fire_f2m > 0 ? std::sqrt(r.fire_mv2 / r.fire_f2m) : 0.0;
   }
-  PetscCall(GridGetGlobal(g, G));
-  grid_update(G, gp, rep.grid);
-  PetscCall(PetscLogEventEnd(ev_grid, 0, 0, 0, 0));
+  {
+    PmpmLogEventScope(ev_grid);
+    PetscCall(GridGetGlobal(g, G));
+    grid_update(G, gp, rep.grid);
+  }
   // 3a. Stacked bodies at the chains' nodes: no interpenetration, separation, friction per face.
   if (!sim.chains.empty()) {
-    PetscCall(PetscLogEventBegin(ev_contact, 0, 0, 0, 0));
+    PmpmLogEventScope(ev_contact);
     ContactParams cp = sim.contact;
     cp.dt = dt;
     // normal impulses, their ghosts, the friction capacity they give the sheet, then the contact
@@ -120,11 +120,10 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     chain_friction_capacity(L, G, sim.chains);
     PetscCall(GridRestoreLocal(g, L));
     contact_bodies(G, sim.chains, cp, false, rep.contact);
-    PetscCall(PetscLogEventEnd(ev_contact, 0, 0, 0, 0));
   }
   // 3b. Interface: friction-limited velocities of body 1 and body 2 where they meet.
   if (iface) {
-    PetscCall(PetscLogEventBegin(ev_iface, 0, 0, 0, 0));
+    PmpmLogEventScope(ev_iface);
     GridView B;
     InterfaceParams ip = sim.iface;
     ip.dt = dt;
@@ -132,15 +131,15 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     PetscCall(GridGetGlobal(gb, B));
     interface_update(G, B, ip, rep.iface);
     PetscCall(GridRestoreGlobal(gb, B));
-    PetscCall(PetscLogEventEnd(ev_iface, 0, 0, 0, 0));
   }
   PetscCall(GridRestoreGlobal(g, G));
 
   // 4. New nodal velocities and accelerations to the ghosts.
-  PetscCall(PetscLogEventBegin(ev_g2l, 0, 0, 0, 0));
-  PetscCall(GridGlobalToLocal(g));
-  if (iface) PetscCall(GridGlobalToLocal(gb));
-  PetscCall(PetscLogEventEnd(ev_g2l, 0, 0, 0, 0));
+  {
+    PmpmLogEventScope(ev_g2l);
+    PetscCall(GridGlobalToLocal(g));
+    if (iface) PetscCall(GridGlobalToLocal(gb));
+  }
   GridView Gb;
   if (iface) PetscCall(GridGetLocal(gb, false, Gb));
   const GridView *G1 = iface ? &Gb : nullptr;
@@ -148,7 +147,6 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   // 5. Grid to particles: velocity (eq. 4), position (eq. 5), velocity gradient (eq. 20), F,
   //    volume. USL reads one nodal field in one pass; MUSL first maps the updated particle
   //    momenta back to the grid and takes the kinematics from that remapped velocity.
-  PetscCall(PetscLogEventBegin(ev_g2p, 0, 0, 0, 0));
   G2PParams pp;
   pp.dt = dt;
   pp.pic = sim.set.pic;
@@ -166,16 +164,17 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     for (const auto &m : sim.mats) energy.insert(energy.end(), {m.el.E, m.el.nu});
     pp.energy = energy.data();
   }
-  PetscCall(GridGetLocal(g, false, G));
-  if (!sim.set.musl) {
-    g2p<Shape>(P, G, G1, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);
+  {
+    PmpmLogEventScope(ev_g2p);
+    PetscCall(GridGetLocal(g, false, G));
+    if (!sim.set.musl)
+      g2p<Shape>(P, G, G1, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);
+    else
+      g2p_velocity<Shape>(P, G, G1, pp);
     PetscCall(GridRestoreLocal(g, G));
-    PetscCall(PetscLogEventEnd(ev_g2p, 0, 0, 0, 0));
-  } else {
-    g2p_velocity<Shape>(P, G, G1, pp);
-    PetscCall(GridRestoreLocal(g, G));
-    PetscCall(PetscLogEventEnd(ev_g2p, 0, 0, 0, 0));
-    PetscCall(PetscLogEventBegin(ev_musl, 0, 0, 0, 0));
+  }
+  if (sim.set.musl) {
+    PmpmLogEventScope(ev_musl);
     PetscCall(GridGetLocal(g, true, G));
     p2g_momentum<Shape>(P, G);
     PetscCall(GridRestoreLocal(g, G));
@@ -187,18 +186,16 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
     PetscCall(GridGetLocal(g, false, G));
     g2p_kinematics<Shape>(P, G, G1, g, pp, sim.wave_modulus.data(), sim.dudx.data(), rep.g2p);
     PetscCall(GridRestoreLocal(g, G));
-    PetscCall(PetscLogEventEnd(ev_musl, 0, 0, 0, 0));
   }
   if (iface) PetscCall(GridRestoreLocal(gb, Gb));
   // 5'. F-bar: each particle's volume change over the step replaced by its cell's.
   if (sim.set.fbar) {
-    PetscCall(PetscLogEventBegin(ev_fbar, 0, 0, 0, 0));
+    PmpmLogEventScope(ev_fbar);
     fbar_apply(P, sim.fbar_group, sim.fbar_sums, sim.dudx.data());
-    PetscCall(PetscLogEventEnd(ev_fbar, 0, 0, 0, 0));
   }
   // 5a. Chain points: the owner of each point's cell moves it; one allreduce shares them all.
   if (!sim.chains.empty()) {
-    PetscCall(PetscLogEventBegin(ev_chain, 0, 0, 0, 0));
+    PmpmLogEventScope(ev_chain);
     PetscCall(GridGetLocal(g, false, G));
     std::vector<double> &buf = sim.chain_buf, part;
     buf.clear();
@@ -233,26 +230,26 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
       }
       chain_update_tension(c);
     }
-    PetscCall(PetscLogEventEnd(ev_chain, 0, 0, 0, 0));
   }
 
   // 6. Stress update, one batch per material (eq. 6), less any imposed eigenstrain.
   //    (Done in step 5 when fused: the event then stays empty, G2P holds the time.)
-  PetscCall(PetscLogEventBegin(ev_stress, 0, 0, 0, 0));
-  if (eigen) rep.eigen_power = shrinkage_increment(P, sim.shrink, load.shrink, sim.eigen);
-  for (size_t m = 0; !fuse && m < sim.mats.size(); ++m) {
-    StressBatch b;
-    b.n = static_cast<int>(sim.mat_idx[m].size());
-    if (b.n == 0) continue;
-    b.idx = sim.mat_idx[m].data();
-    b.dudx = sim.dudx.data();
-    b.F = P.F;
-    b.stress = P.stress;
-    b.eps_p = P.eps_p;
-    if (eigen) b.eigen = sim.eigen.data();
-    sim.mats[m].model->update_stress(b);
+  {
+    PmpmLogEventScope(ev_stress);
+    if (eigen) rep.eigen_power = shrinkage_increment(P, sim.shrink, load.shrink, sim.eigen);
+    for (size_t m = 0; !fuse && m < sim.mats.size(); ++m) {
+      StressBatch b;
+      b.n = static_cast<int>(sim.mat_idx[m].size());
+      if (b.n == 0) continue;
+      b.idx = sim.mat_idx[m].data();
+      b.dudx = sim.dudx.data();
+      b.F = P.F;
+      b.stress = P.stress;
+      b.eps_p = P.eps_p;
+      if (eigen) b.eigen = sim.eigen.data();
+      sim.mats[m].model->update_stress(b);
+    }
   }
-  PetscCall(PetscLogEventEnd(ev_stress, 0, 0, 0, 0));
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscFunctionReturn(0);
 }
@@ -326,7 +323,7 @@ namespace {
 PetscErrorCode CheckSupport(Simulation &sim) {
   ParticleView P;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(ev_support, 0, 0, 0, 0));
+  PmpmLogEventScope(ev_support); // to the end: the error's broadcast too, only when it fails
   PetscCall(ParticlesGetView(sim.parts, P));
   const double lmax = CPGIMPShape::kMaxHalf * sim.grid.h;
   // [ratio, pid, x, y, direction, stretch V_dd, l0] of this rank's first outgrown block
@@ -349,7 +346,6 @@ PetscErrorCode CheckSupport(Simulation &sim) {
     int rank;
   } in = {info[0], sim.rank}, out;
   PetscCallMPI(MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
-  PetscCall(PetscLogEventEnd(ev_support, 0, 0, 0, 0));
   if (out.v == 0) PetscFunctionReturn(0);
   PetscCallMPI(MPI_Bcast(info, 7, MPI_DOUBLE, out.rank, sim.comm));
   SETERRQ(sim.comm, PETSC_ERR_NOT_CONVERGED,
@@ -445,11 +441,10 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, StepReport &re
 
   // 8. Migrate only when a particle left its rank's cells.
   if (sm[3] > 0) {
-    PetscCall(PetscLogEventBegin(ev_migrate, 0, 0, 0, 0));
+    PmpmLogEventScope(ev_migrate);
     PetscCall(ParticlesMigrate(sim.parts));
     PetscCall(SimulationIndexParticles(sim));
     ++sim.run.migrations;
-    PetscCall(PetscLogEventEnd(ev_migrate, 0, 0, 0, 0));
   }
   if (sim.set.shape == ShapeKind::CPGIMP) PetscCall(CheckSupport(sim));
   PetscFunctionReturn(0);
