@@ -95,6 +95,12 @@ cases = [
     ("cover shrinkage of a hyperelastic waste", ["-options_file", "options/cover_degradation.opts",
                                                  "-mat_waste_model", "neo_hookean"],
      "-cover_shrink_total"),
+    # the laws a check allows come from the law table (src/materials/registry.cpp)
+    ("cover shrinkage of a hyperelastic waste lists the rate-form laws",
+     ["-options_file", "options/cover_degradation.opts", "-mat_waste_model", "neo_hookean"],
+     "(linear_elastic, drucker_prager, von_mises)"),
+    ("footing in an elastic soil", ["-options_file", "options/footing.opts", "-mat_soil_model",
+                                    "linear_elastic"], "plastic law (drucker_prager, von_mises)"),
     ("cover surface not spanning the width", ["-options_file", "options/cover_slope.opts",
                                               "-cover_surface", "0,5,50,8"], "-cover_surface"),
     ("trapdoor displacements decreasing", ["-options_file", "options/trapdoor.opts",

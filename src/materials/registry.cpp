@@ -26,9 +26,10 @@ const char *const *MaterialLawNames() {
   return names.data();
 }
 
-std::string MaterialLawList() {
+std::string MaterialLawList(bool MaterialLaw::*trait) {
   std::string s;
-  for (const MaterialLaw &l : MaterialLaws()) s += (s.empty() ? "" : ", ") + std::string(l.name);
+  for (const MaterialLaw &l : MaterialLaws())
+    if (!trait || l.*trait) s += (s.empty() ? "" : ", ") + std::string(l.name);
   return s;
 }
 

@@ -23,6 +23,7 @@
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/giroud.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
+#include "pmpm/materials/registry.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
 #include "pmpm/veneer.hpp"
@@ -496,9 +497,10 @@ public:
       for (size_t k = 0; k < surf_.size() / 2; ++k) ytop = std::fmax(ytop, surf_[2 * k + 1]);
       sim.shrink.y_hi = ytop; // grading is linear from the base to the highest waste surface
       PmpmCheckInput(sim.mats[0].model->rate_form(), sim.comm, PETSC_ERR_SUP,
-                     "-cover_shrink_total needs a rate-form waste material (linear_elastic, "
-                     "drucker_prager, von_mises), not -mat_%s_model %s",
-                     waste_mat_.c_str(), sim.mats[0].model->model());
+                     "-cover_shrink_total needs a rate-form waste material (%s), not "
+                     "-mat_%s_model %s",
+                     MaterialLawList(&MaterialLaw::rate_form).c_str(), waste_mat_.c_str(),
+                     sim.mats[0].model->model());
     }
     // membranes: chains at the base of their layers, ends half a point spacing inside the walls
     for (const Membrane &M : mem_) {

@@ -21,6 +21,7 @@
 #include "pmpm/options.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
+#include "pmpm/materials/registry.hpp"
 #include "pmpm/materials/von_mises.hpp"
 #include "pmpm/output.hpp"
 #include "pmpm/scene_util.hpp"
@@ -155,8 +156,9 @@ public:
     sim.mats.resize(1);
     PetscCall(MaterialFromOptions(sim.comm, "soil", sim.mats[0]));
     PmpmCheckInput(sim.mats[0].model->plastic(), sim.comm, PETSC_ERR_USER_INPUT,
-                   "-mat_soil_model must be von_mises or drucker_prager (a footing has a bearing "
-                   "capacity only in a soil that yields)");
+                   "-mat_soil_model must be a plastic law (%s): a footing has a bearing "
+                   "capacity only in a soil that yields",
+                   MaterialLawList(&MaterialLaw::plastic).c_str());
     const double reach = mechanism_reach(sim);
     PmpmCheckInput(
         W_ >= reach, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,

@@ -1,4 +1,5 @@
 #include "pmpm/scene_util.hpp"
+#include "pmpm/materials/elastic.hpp"
 #include "pmpm/options.hpp"
 #include <cmath>
 #include <cstring>
@@ -87,7 +88,7 @@ PetscErrorCode CompareVertical(Simulation &sim, const std::function<double(doubl
 double UniaxialStrainJ(const MaterialEntry &m, double sig) {
   const ElasticConstants &c = m.el;
   double J = std::exp(sig / c.M());
-  if (std::strcmp(m.model->model(), "neo_hookean") != 0) return J;
+  if (std::strcmp(m.model->model(), NeoHookean::kName) != 0) return J;
   for (int it = 0; it < 60; ++it) { // Newton on g(J) = lambda ln J + mu (J^2 - 1) - sig J
     const double g = c.lambda() * std::log(J) + c.G() * (J * J - 1) - sig * J;
     const double dg = c.lambda() / J + 2 * c.G() * J - sig;

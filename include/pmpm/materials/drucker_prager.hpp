@@ -255,6 +255,7 @@ inline ReturnDerivative drucker_prager_return_derivative(const DruckerPragerPara
 class DruckerPrager final : public Material {
 public:
   static constexpr const char *kName = "drucker_prager";
+  static constexpr bool kRateForm = true, kPlastic = true;
   // its el is not an option (set by Create); no tension cut-off unless -tension_cutoff is given
   struct Options : DruckerPragerParams {
     Options() { tension_cutoff = std::numeric_limits<double>::infinity(); }
@@ -268,7 +269,8 @@ public:
   const char *model() const override { return kName; }
   bool tangent(TangentModel &tm) const override;
   double wave_modulus() const override { return prm_.el.M(); }
-  bool plastic() const override { return true; }
+  bool rate_form() const override { return kRateForm; }
+  bool plastic() const override { return kPlastic; }
   bool dilatant() const override { return prm_.psi_deg > 0; }
   const DruckerPragerParams &params() const { return prm_; }
   const DPCoefficients &coefficients() const { return k_; }

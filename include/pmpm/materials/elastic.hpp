@@ -28,12 +28,15 @@ inline void elastic_rate_update(double lam, double G2, const double g[DIM * DIM]
 class LinearElastic final : public Material {
 public:
   static constexpr const char *kName = "linear_elastic";
+  static constexpr bool kRateForm = true, kPlastic = false;
   struct Options {}; // -E and -nu only (every material's)
   static PetscErrorCode ReadOptions(PetscOptionItems *, Options &) { return 0; }
   static PetscErrorCode Create(MPI_Comm comm, const std::string &prefix, const ElasticConstants &el,
                                const Options &o, std::unique_ptr<Material> &model);
   explicit LinearElastic(const ElasticConstants &c) : c_(c) {}
   const char *model() const override { return kName; }
+  bool rate_form() const override { return kRateForm; }
+  bool plastic() const override { return kPlastic; }
   bool tangent(TangentModel &tm) const override;
   double wave_modulus() const override { return c_.M(); }
   bool linear_elastic_rate(double &lam, double &G2) const override {
@@ -75,7 +78,8 @@ inline Mat3 neo_hookean_stress(const ElasticConstants &c, const double *Fp) {
 class NeoHookean final : public Material {
 public:
   static constexpr const char *kName = "neo_hookean";
-  struct Options {}; // -E and -nu only (every material's)
+  static constexpr bool kRateForm = false, kPlastic = false; // the stress is a function of F
+  struct Options {};                                         // -E and -nu only (every material's)
   static PetscErrorCode ReadOptions(PetscOptionItems *, Options &) { return 0; }
   static PetscErrorCode Create(MPI_Comm comm, const std::string &prefix, const ElasticConstants &el,
                                const Options &o, std::unique_ptr<Material> &model);
@@ -83,7 +87,8 @@ public:
   const char *model() const override { return kName; }
   bool tangent(TangentModel &tm) const override;
   double wave_modulus() const override { return c_.M(); }
-  bool rate_form() const override { return false; }
+  bool rate_form() const override { return kRateForm; }
+  bool plastic() const override { return kPlastic; }
   void update_stress(const StressBatch &b) const override {
     for (int k = 0; k < b.n; ++k) {
       const int p = b.idx[k];

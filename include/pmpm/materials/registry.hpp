@@ -1,11 +1,13 @@
 // The material laws: one class each (a Material), and one line each in the table of
 // src/materials/registry.cpp. The table gives -mat_<name>_model its values, -help and
-// docs/options.md their lists, and the error messages their allowed names; nothing else in the
-// code names a law.
+// docs/options.md their lists, and the error messages their allowed names; nothing else lists
+// the laws (scenes whose closed forms need one law's parameters ask for that class).
 //
 // A law class provides, besides the Material methods (model(), wave_modulus(), update_stress(),
 // tangent() for -solver newton):
 //   static constexpr const char *kName;   the value of -mat_<name>_model
+//   static constexpr bool kRateForm, kPlastic;
+//       what its rate_form() and plastic() return (MaterialLawList lists the laws with either)
 //   struct Options { ... };               what its own options set (default-constructed = defaults)
 //   static PetscErrorCode ReadOptions(PetscOptionItems *, Options &);
 //       its options, read inside the material's block -mat_<name>_ (after -model, -E, -nu,
@@ -13,7 +15,7 @@
 //   static PetscErrorCode Create(MPI_Comm, const std::string &prefix, const ElasticConstants &,
 //                                const Options &, std::unique_ptr<Material> &);
 //       its options' checks (PmpmCheckInput: skipped under -help), then the model
-// (docs/developer-guide.md, "How to add a material law").
+// (docs/developer-guide.md, "Adding a material").
 #pragma once
 #include "pmpm/material.hpp"
 #include <petscsys.h>
@@ -52,19 +54,22 @@ struct MaterialLaw {
   const char *name;        // -mat_<name>_model's value
   const char *description; // one line: -help, docs/options.md
   std::unique_ptr<LawOptions> (*options)();
+  bool rate_form, plastic; // Material::rate_form(), plastic() of its models
 };
 
 // One entry of the table.
 template <class Law> MaterialLaw RegisterLaw(const char *description) {
   return {Law::kName, description,
-          [] { return std::unique_ptr<LawOptions>(new LawOptionsOf<Law>); }};
+          [] { return std::unique_ptr<LawOptions>(new LawOptionsOf<Law>); }, Law::kRateForm,
+          Law::kPlastic};
 }
 
 // The table, in -mat_<name>_model's order (the first is the default).
 const std::vector<MaterialLaw> &MaterialLaws();
 // -mat_<name>_model's list as PmpmOptionsEnum takes it: the names, "MaterialModel", "MODEL_", null.
 const char *const *MaterialLawNames();
-// The names joined by ", " (error messages).
-std::string MaterialLawList();
+// The names joined by ", " (error messages); with a trait (&MaterialLaw::plastic), only the laws
+// that have it.
+std::string MaterialLawList(bool MaterialLaw::*trait = nullptr);
 
 } // namespace pmpm

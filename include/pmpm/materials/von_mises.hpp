@@ -73,6 +73,7 @@ inline ReturnDerivative von_mises_return_derivative(const VonMisesParams &prm, c
 class VonMises final : public Material {
 public:
   static constexpr const char *kName = "von_mises";
+  static constexpr bool kRateForm = true, kPlastic = true;
   using Options = VonMisesParams; // its el is not an option (set by Create)
   // -yield_stress, -hardening (src/materials/von_mises.cpp)
   static PetscErrorCode ReadOptions(PetscOptionItems *items, Options &o);
@@ -82,7 +83,8 @@ public:
   const char *model() const override { return kName; }
   bool tangent(TangentModel &tm) const override;
   double wave_modulus() const override { return prm_.el.M(); }
-  bool plastic() const override { return true; }
+  bool rate_form() const override { return kRateForm; }
+  bool plastic() const override { return kPlastic; }
   const VonMisesParams &params() const { return prm_; }
   void update_stress(const StressBatch &b) const override {
     predictor_corrector(b, prm_.el, [this](Mat3 &s, double &ep) { von_mises_return(prm_, s, ep); });
