@@ -220,7 +220,9 @@ PetscErrorCode Relax(Simulation &sim) {
     PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, sim.comm));
     PetscCheck(ok, sim.comm, PETSC_ERR_FILE_OPEN, "-relax_history: cannot write %s",
                s.relax_history.c_str());
-    if (hist && fresh)
+    // a new file has its header (also one a restart starts: it appends to what it finds)
+    if (hist && !fresh) fseek(hist, 0, SEEK_END);
+    if (hist && (fresh || ftell(hist) == 0))
       fprintf(hist, "stage,step,ratio,kinetic,kinetic_resets,max_unbalanced,x,y\n");
   }
   PetscInt k = resume ? run.stage_step + 1 : 1;
