@@ -4,7 +4,8 @@ wrote (-checkpoint_every K) and prints, between each pair: the largest particle 
 and where, the plastic strain gathered and by how many particles, and the first chain's peak
 strain, largest tension and the settlement of its right end. A stall whose increments fall is
 converging slowly; one whose increments stay the same from interval to interval is a mechanism
-(at whatever scale: docs/benchmarks/relaxation_steps.md, "The slope's stage 2").
+(of the physics or of the discretisation: docs/benchmarks/relaxation_steps.md, "The slope's
+stage 2").
 
     /usr/bin/python3 bench/relaxation_creep.py DIR [FIRST.h5]
 
