@@ -186,7 +186,7 @@ bool RunControl(const std::string &name) {
       "restart",           "output_dir",   "max_steps",        "quiet",
       "progress_interval", "output_every", "checkpoint_every", "checkpoint_at_stage_end",
       "options_file",      "help",         "memory_limit",     "options_left"};
-  // (-tol has no longer namesake)
+  // (no other option name starts with "tol")
   static const char *const prefix[] = {"balance", "da_processors_", "log",   "malloc",       "info",
                                        "tol",     "damping",        "fire_", "relax_history"};
   for (const char *e : exact)

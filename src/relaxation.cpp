@@ -408,7 +408,7 @@ PetscErrorCode Relax(Simulation &sim) {
       PetscCallMPI(MPI_Bcast(at, DIM, MPI_DOUBLE, glob.rank, sim.comm));
       // the trend over the second half: a ratio that hardly falls may be a mechanism (a creep at
       // constant rate, which more steps do not cure; docs/method.md, section 3)
-      char trend[256] = "";
+      char trend[384] = "";
       if (ratio_half > 0) {
         const double fell = ratio_half / std::fmax(run.ratio, 1e-300);
         snprintf(trend, sizeof(trend),
