@@ -15,6 +15,8 @@ Cases (each as shipped but for the cell size):
   landfill  options/landfill_friction.opts with its membrane a chain in contact (mu = 0.3 on both
             faces) at h = 0.25 mm, 2 ranks, ramp 2000 steps (-tol 1e-5)
   slope     options/cover_slope.opts at h = 0.25 m, 2 ranks (-tol 1e-3, cap 30,000 per stage)
+The slope's stage 2 stall is diagnosed by hand (relaxation_steps.md, second section; checkpoints
+compared by bench/relaxation_creep.py).
 Per run: the steps of every stage, whether it reached -tol, the final ratio, wall time, and the
 answers the tests read; the last column is each answer's relative change from the shipped (kinetic) run.
 Every run writes its ratio history (-relax_history) to bench/out/relaxation_steps/<run>_history.csv.
@@ -33,8 +35,10 @@ MARK_BEGIN, MARK_END = "<!-- relaxation_steps.py begin -->", "<!-- relaxation_st
 # "kinetic" is the default (the before); "spacing1" one chain point per cell (the after: the
 # stalls are the chains' points sharing a cell, not the damping); "chainpic0" a damping-side
 # alternative; "fire" is refused with chains (all three cases have one) and fails there
-SCHEMES = {"kinetic": ["-damping", "kinetic"], "spacing1": ["-chain_spacing", 1],
-           "fire": ["-damping", "fire"], "chainpic0": ["-chain_pic", 0]}
+# (options/catenary.opts now ships -chain_spacing 1: all but "spacing1" name the default 0.25)
+Q = ["-chain_spacing", 0.25]
+SCHEMES = {"kinetic": ["-damping", "kinetic"] + Q, "spacing1": ["-chain_spacing", 1],
+           "fire": ["-damping", "fire"] + Q, "chainpic0": ["-chain_pic", 0] + Q}
 
 # case: (ranks, options, answers read from summary.json results or the last stages.csv row)
 CASES = {

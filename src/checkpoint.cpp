@@ -178,13 +178,17 @@ const ChainArrays kChainArrays[] = {
 };
 
 // The options that define the model a checkpoint holds: every option the run was given (command
-// line and options files), by lower-case name, except run control, which a restart may change.
+// line and options files), by lower-case name, except run control, which a restart may change:
+// output, partition, and how the relaxation seeks equilibrium (its damping, tolerance and history
+// file; a stage stopped at its cap may be resumed with another scheme or a looser tolerance).
 bool RunControl(const std::string &name) {
   static const char *const exact[] = {
       "restart",           "output_dir",   "max_steps",        "quiet",
       "progress_interval", "output_every", "checkpoint_every", "checkpoint_at_stage_end",
       "options_file",      "help",         "memory_limit",     "options_left"};
-  static const char *const prefix[] = {"balance", "da_processors_", "log", "malloc", "info"};
+  // (no other option name starts with "tol")
+  static const char *const prefix[] = {"balance", "da_processors_", "log",   "malloc",       "info",
+                                       "tol",     "damping",        "fire_", "relax_history"};
   for (const char *e : exact)
     if (name == e) return true;
   for (const char *q : prefix)
@@ -562,7 +566,8 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
     PetscCall(ModelOptions(now));
     const char *allowed = "a restart resumes the checkpoint's model; only run control (-max_steps, "
                           "-output_*, -checkpoint_*, -progress_interval, -quiet, -memory_limit, "
-                          "-balance*, -da_processors_*) may differ";
+                          "-balance*, -da_processors_*, -tol, -damping*, -fire_*, "
+                          "-relax_history*) may differ";
     auto shown = [](const std::pair<std::string, std::string> &o) {
       return "-" + o.first + (o.second.empty() ? "" : " " + o.second);
     };
@@ -576,8 +581,8 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
                  F, kv.second.first.c_str(), it->second.second.c_str(), kv.second.second.c_str(),
                  allowed);
     }
-    for (const auto &kv : was)
-      PetscCheck(now.count(kv.first), sim.comm, PETSC_ERR_USER_INPUT,
+    for (const auto &kv : was) // (a checkpoint may predate an option's counting as run control)
+      PetscCheck(now.count(kv.first) || RunControl(kv.first), sim.comm, PETSC_ERR_USER_INPUT,
                  "-restart %s: %s was given to the run that wrote the checkpoint, not here; %s", F,
                  shown(kv.second).c_str(), allowed);
   }

@@ -220,11 +220,17 @@ PetscErrorCode Relax(Simulation &sim) {
     PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, sim.comm));
     PetscCheck(ok, sim.comm, PETSC_ERR_FILE_OPEN, "-relax_history: cannot write %s",
                s.relax_history.c_str());
-    if (hist && fresh)
+    // a new file has its header (also one a restart starts: it appends to what it finds)
+    if (hist && !fresh) fseek(hist, 0, SEEK_END);
+    if (hist && (fresh || ftell(hist) == 0))
       fprintf(hist, "stage,step,ratio,kinetic,kinetic_resets,max_unbalanced,x,y\n");
   }
   PetscInt k = resume ? run.stage_step + 1 : 1;
   PetscInt step_last = k - 1;
+  // the ratio at half the step cap, for the trend a capped stage reports (unknown, < 0, when the
+  // stage resumed past it)
+  const PetscInt half = s.max_steps / 2;
+  double ratio_half = -1;
   for (; k <= s.max_steps; ++k) {
     run.stage_step = k;
     ++run.step;
@@ -330,6 +336,7 @@ PetscErrorCode Relax(Simulation &sim) {
     }
     if (s.output_every > 0 && run.step % s.output_every == 0) PetscCall(OutputSeriesFrame(sim));
 
+    if (k == half) ratio_half = run.ratio;
     run.converged = !s.dynamic && ramped && run.ratio <= s.tol;
     if (!s.relax_history.empty() &&
         (k % s.relax_history_every == 0 || run.converged || run.stop_stage || k == s.max_steps))
@@ -399,16 +406,30 @@ PetscErrorCode Relax(Simulation &sim) {
       double at[DIM] = {run.local_unbalanced_at[0], run.local_unbalanced_at[1]};
       PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
       PetscCallMPI(MPI_Bcast(at, DIM, MPI_DOUBLE, glob.rank, sim.comm));
+      // the trend over the second half: a ratio that hardly falls may be a mechanism (a creep at
+      // constant rate, which more steps do not cure; docs/method.md, section 3)
+      char trend[384] = "";
+      if (ratio_half > 0) {
+        const double fell = ratio_half / std::fmax(run.ratio, 1e-300);
+        snprintf(trend, sizeof(trend),
+                 " Over the second half of the cap the ratio went from %.3e to %.3e%s.", ratio_half,
+                 run.ratio,
+                 fell < 2 ? ": less than 2x, so more steps will help little; if the model "
+                            "still moves there at a constant rate, it is a mechanism "
+                            "(bench/relaxation_creep.py compares checkpoints)"
+                          : "");
+      }
       PetscCall(PetscPrintf(sim.comm,
                             "%sNOT converged: step cap %" PetscInt_FMT " reached with "
                             "unbalanced-force ratio %.3e > %g (%.2f s); the largest unbalanced "
                             "force (%.3g N/m) is at the node (%g, %g) m. Raise -max_steps or "
-                            "-tol%s\n",
+                            "-tol%s.%s\n",
                             stage_tag, s.max_steps, run.ratio, s.tol, run.stage_seconds, glob.v,
                             at[0], at[1],
                             sim.chains.empty() ? ""
                                                : "; at a membrane's node, the contact may be "
-                                                 "chattering (docs/limitations.md)"));
+                                                 "chattering (docs/limitations.md)",
+                            trend));
     }
   }
   // The paper's interface keeps one normal velocity for both bodies, so it also holds them

@@ -12,6 +12,8 @@ usage: test_restart.py EXE OUTDIR
    1 rank from the 2-rank checkpoint, positions and stresses agree to 1e-10 relative (round-off:
    the ghost sums add in another order), the chain's points to 1e-10 of its extent, and the stage
    record's steps are equal (its strains and tensions to what that position bound allows).
+   Restarted from the end of stage 0 with a tighter -tol and a -relax_history file (the
+   relaxation's controls are run control), the later stages meet the new tolerance.
 2. The void cover (tests/cover_void.opts: particles removed at stage 1): restarted on 2 ranks
    from inside the void stage (a checkpoint with fewer particles than the scene generates), bit
    for bit again.
@@ -112,6 +114,21 @@ for key, tol in (("surface_settlement", 1e-10 * scale), ("membrane_settlement", 
                  ("peak_strain", tol_eps), ("peak_tension", 1e6 * tol_eps)):
     diff = max(abs(float(p[key]) - float(q[key])) for p, q in zip(ra, rb))
     c.le(f"restart on 1 rank: stages.csv {key} max difference", diff, tol)
+
+# ... with the relaxation's own controls changed (run control): a tighter -tol and a history
+# file; the later stages then meet the new tolerance, and the history has their rows
+d = f"{out}/restart_tol"
+hist = f"{out}/restart_tol_history.csv"
+run(exe, 2, COLUMN + ["-restart", f"{ck}/checkpoint_{ends[0]}.h5", "-tol", "5e-6",
+                      "-relax_history", hist], d)
+rt = stage_rows(d)
+c.check("restart with -tol 5e-6: the later stages converged to it",
+        all(r["converged"] == "1" and float(r["ratio"]) <= 5e-6 for r in rt[1:]),
+        f"({[(r['stage'], r['ratio']) for r in rt]})")
+with open(hist) as f:
+    hs = {int(r["stage"]) for r in csv.DictReader(f)}
+c.check("restart with -relax_history: rows for the later stages only", hs == set(range(1, len(rt))),
+        f"(stages {sorted(hs)})")
 
 # 2. the void cover: a checkpoint inside the stage that removed particles
 vck = f"{out}/void"
