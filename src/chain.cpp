@@ -303,6 +303,40 @@ void chain_lay(Chain &c) {
   chain_update_tension(c);
 }
 
+// The length of face each node stands for if the sheet ran on unbroken (ChainDof::AREA): its
+// points' w l (LEN), plus what a pinned end point and the sheet's continuation beyond each end
+// (straight on along the end segment, at the points' spacing, as far as a point's weights reach)
+// would have added. A node at a sheet's end carries the normal impulse of its whole face, part of
+// it beyond the sheet (blocks bonded past a pulled-out sheet's end, the gap between a cover's
+// sheet and its wall); the sheet's share of that impulse is LEN / AREA, not all of it.
+static void chain_face_area_ends(const Chain &c, const GridView &G, const Grid &grid) {
+  if (c.n < 3) return;
+  Weights<UGIMPShape> W;
+  constexpr int NS = UGIMPShape::NS;
+  const double s = c.length[c.n / 2]; // an interior point's length: the spacing
+  const int nk = static_cast<int>(std::ceil(2.0 * G.h / s));
+  for (int e = 0; e < 2; ++e) {
+    const int i = e == 0 ? 0 : c.n - 1, j = e == 0 ? 1 : c.n - 2;
+    const double *xe = &c.x[i * DIM], *xj = &c.x[j * DIM];
+    const double d[DIM] = {xe[0] - xj[0], xe[1] - xj[1]}, ld = std::hypot(d[0], d[1]);
+    const double tau[DIM] = {std::fabs(d[0]) / ld, std::fabs(d[1]) / ld};
+    // the end point's missing share of a full spacing (all of it if pinned: p2g skips it),
+    // then whole spacings beyond the end
+    for (int k = 0; k <= nk; ++k) {
+      const double len = k == 0 ? (pinned(c, i) ? s : s - c.length[i]) : s;
+      if (len <= 0) continue;
+      const double xv[DIM] = {xe[0] + k * s * d[0] / ld, xe[1] + k * s * d[1] / ld};
+      if (!owned_by(grid, G, xv)) continue; // off the grid (past a wall) or another rank's
+      double lp[DIM];
+      point_halfsize(G, xv, tau, lp);
+      weights<UGIMPShape>(xv, lp, G.origin, G.h, W);
+      for (int q = 0; q < NS * NS; ++q)
+        if (W.w[q] != 0.0)
+          G.node(W.base[0] + q % NS, W.base[1] + q / NS)[c.slot + ChainDof::AREA] += W.w[q] * len;
+    }
+  }
+}
+
 void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &grid) {
   Weights<UGIMPShape> W;
   constexpr int NS = UGIMPShape::NS;
@@ -331,8 +365,10 @@ void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &
         ns[ChainDof::NX] += w * m * nrm[0];
         ns[ChainDof::NY] += w * m * nrm[1];
         ns[ChainDof::LEN] += w * c.length[i];
+        ns[ChainDof::AREA] += w * c.length[i];
       }
   }
+  chain_face_area_ends(c, G, grid);
 }
 
 bool chain_point_weights(const Chain &c, int i, const GridView &G, const Grid &grid,
@@ -369,7 +405,7 @@ void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &p
     double tau[DIM], nrm[DIM];
     point_stencil(c, i, G, tau, nrm, W);
     double vg[DIM] = {0, 0}, ag[DIM] = {0, 0}, va[DIM] = {0, 0}, vb[DIM] = {0, 0};
-    double ma = 0, mb = 0, nt = 0, nbt = 0, len = 0;
+    double ma = 0, mb = 0, nt = 0, nbt = 0;
     for (int b = 0; b < NS; ++b)
       for (int a = 0; a < NS; ++a) {
         const double w = W.w[b * NS + a];
@@ -393,17 +429,22 @@ void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &p
           for (int d = 0; d < DIM; ++d) vb[d] += w * (nc[GridDof::P + d] - nb[GridDof::P + d]);
           mb += w;
         }
-        nt += w * std::fmax(ns[ChainDof::NTOP], 0.0);
-        nbt += w * std::fmax(ns[ChainDof::NBOT], 0.0);
-        len += w * ns[ChainDof::LEN];
+        // the point's share of the node's normal impulse: w l_i / AREA of it (AREA >= w l_i > 0),
+        // tension included (a bonded face's rows of nodes carry impulses of both signs that add
+        // up to its load: keeping only the compressive ones tripled a bonded sheet's pressure)
+        const double share = w / ns[ChainDof::AREA];
+        nt += share * ns[ChainDof::NTOP];
+        nbt += share * ns[ChainDof::NBOT];
       }
 
     for (int d = 0; d < DIM; ++d) v[d] = (1.0 - pic) * (v[d] + dt * ag[d]) + pic * vg[d];
     if (ma > 0) c.slip_top[i] += dt * (va[0] * tau[0] + va[1] * tau[1]) / ma;
     if (mb > 0) c.slip_bot[i] += dt * (vb[0] * tau[0] + vb[1] * tau[1]) / mb;
-    // contact pressure: the compressive normal impulse over the sheet length it acts on
-    c.p_top[i] = len > 0 ? nt / (dt * len) : 0.0;
-    c.p_bot[i] = len > 0 ? nbt / (dt * len) : 0.0;
+    // contact pressure (negative: tension): the point's shares of its nodes' normal impulses over
+    // its length (sum_q w_q N_q / AREA_q, so the pressures times the lengths add up to the
+    // sheet's share of the impulses)
+    c.p_top[i] = nt / dt;
+    c.p_bot[i] = nbt / dt;
     xn[i * DIM] = x[0] + dt * vg[0];
     xn[i * DIM + 1] = x[1] + dt * vg[1];
   }
@@ -466,18 +507,19 @@ void chain_friction_capacity(const GridView &L, const GridView &G,
       if (W.base[0] < L.gs[0] || W.base[1] < L.gs[1] || W.base[0] + NS > L.gs[0] + L.gm[0] ||
           W.base[1] + NS > L.gs[1] + L.gm[1])
         continue;
-      // the point's pressure on each face: its stencil's normal impulse over its sheet length
-      // (every node: a node where the sheet is thin carries little of the point's length), and
-      // the weight of the nodes where that face is in contact
-      double n[2] = {0, 0}, len = 0, wc[2] = {0, 0};
+      // the point's normal impulse on each face over its length: its shares w l_i / AREA of its
+      // nodes' impulses, so that the points' impulses add up to the sheet's share of the nodes'
+      // (a ratio of the stencil's sums, sum w N / sum w LEN, overstated a level sheet's pressure
+      // by 13-17 % once it lay between two rows of nodes), and the weight of the nodes where that
+      // face is in contact
+      double n[2] = {0, 0}, wc[2] = {0, 0};
       for (int q = 0; q < NS * NS; ++q) {
         if (W.w[q] == 0.0) continue;
         const double *ns = L.node(W.base[0] + q % NS, W.base[1] + q / NS) + c.slot;
-        len += W.w[q] * ns[ChainDof::LEN];
         for (int f = 0; f < 2; ++f) {
           const double N = ns[f == 0 ? ChainDof::NTOP : ChainDof::NBOT];
           if (N <= 0) continue;
-          n[f] += W.w[q] * N;
+          n[f] += W.w[q] * N / ns[ChainDof::AREA];
           wc[f] += W.w[q];
         }
       }
@@ -490,9 +532,8 @@ void chain_friction_capacity(const GridView &L, const GridView &G,
         const double *ns = L.node(a, b) + c.slot;
         double *out = G.node(a, b) + c.slot;
         for (int f = 0; f < 2; ++f)
-          if (len > 0 && ns[f == 0 ? ChainDof::NTOP : ChainDof::NBOT] > 0)
-            out[f == 0 ? ChainDof::PTOP : ChainDof::PBOT] +=
-                W.w[q] / wc[f] * c.length[i] * n[f] / len;
+          if (ns[f == 0 ? ChainDof::NTOP : ChainDof::NBOT] > 0)
+            out[f == 0 ? ChainDof::PTOP : ChainDof::PBOT] += W.w[q] / wc[f] * c.length[i] * n[f];
       }
     }
 }

@@ -42,7 +42,8 @@ struct ChainDof {
   static constexpr int NTOP = 3, NBOT = 4; // normal impulse on the upper / lower face (N s/m)
   static constexpr int STOP = 5, SBOT = 6; // friction impulse on the chain along tau, per face
   static constexpr int PTOP = 7, PBOT = 8; // normal impulse pooled over the sheet (N s/m)
-  static constexpr int NDOF = 9;
+  static constexpr int AREA = 9; // LEN had the sheet run on past its ends (chain_face_area_ends)
+  static constexpr int NDOF = 10;
 };
 
 enum class StiffnessKind { PlaneStrain = 0, Uniaxial = 1 };
