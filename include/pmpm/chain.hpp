@@ -91,7 +91,7 @@ struct Chain {
   // -chain_strain_projection: each segment's strain is the grid's projection of the chord
   // strains (chain.cpp, chain_update_tension); eps_chord keeps the chord strains. The grid's
   // geometry is kept for it (every rank projects all segments, as it holds all points).
-  bool strain_projection = false;
+  bool strain_projection = false; // set from -chain_strain_projection (on by default)
   double grid_h = 0, grid_origin[DIM] = {0, 0};
   PetscInt grid_ncell[DIM] = {0, 0};
   std::vector<double> eps_chord;
