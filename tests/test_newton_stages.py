@@ -18,9 +18,10 @@ usage: test_newton_stages.py EXE NP OUTDIR
    default): Newton against relaxation, settlement at X = 15 mm 0.07 %, peak axial strain 1.1 %,
    chain peak strain 1.2 % (bounds 1.5 %, 2 %, 2 %; with the chord strain 0.07 %, 0.39 %, 0.41 %).
    The projected tangent's rate: every load step's solve (|R| 2.2e3, 45, 8e-3, 6e-10, three
-   iterations) has an order of convergence log(r_n / r_n-1) / log(r_n-1 / r_n-2) over its last
-   three norms above round-off (1e-12 of the largest |R|) of 1.8-2.3 measured, bound 1.5 (1 is
-   linear convergence, the mark of a tangent that misses the projection).
+   iterations; the last at 5e-14 of the largest |R|, round-off) has an order of convergence
+   log(r_n / r_n-1) / log(r_n-1 / r_n-2) over its last three norms above 1e-12 of the largest |R|
+   of 1.9-2.3 measured (10 solves), bound 1.5 (1 is linear convergence, the mark of a tangent
+   that misses the projection).
 3. -snes_test_jacobian on the landfill chain at h = 2 mm with the sheet 1000x stiffer (the chain's
    bar stiffness then dominates ||J||), projected (the default) and chord (-chain_strain_projection
    0): 2.7e-8 to 5.6e-8 and 9.5e-8 measured, bound 1e-6 (the elastoplastic and tension-only laws'
@@ -95,9 +96,9 @@ if np_ == 1:
     big = max(s[0] for s in solves)
     above = [[r for r in s if r > 1e-12 * big] for s in solves]
     orders = [np.log(s[-1] / s[-2]) / np.log(s[-2] / s[-3]) for s in above
-              if len(s) >= 4 and s[0] >= 1e-2 * big and s[-2] < s[-3]]
+              if len(s) >= 3 and s[0] >= 1e-2 * big and s[-2] < s[-3]]
     print("     landfill chain: orders of convergence " + " ".join(f"{q:.2f}" for q in orders))
-    c.check("landfill chain: load-step solves judged", len(orders) >= 10, f"({len(orders)})")
+    c.check("landfill chain: load-step solves judged", len(orders) >= 8, f"({len(orders)})")
     c.ge("landfill chain (projected): smallest order of convergence", min(orders, default=0), 1.5)
 
 # 3. the chain's tangent against finite differences (the sheet 1000x stiffer)
