@@ -12,13 +12,16 @@ the two adjacent segments; the first point's is its segment's, so the segments f
 The oscillation index is max_k |e_k - (e_{k-1} + e_{k+1}) / 2| / max_k e_k over the interior
 segments (the two end segments excluded); the peak is the largest segment strain (no gauge).
 The table gives per example, mesh and variant: steps, wall time, whether every stage converged,
-the segment peak and its x, the index, and the peak's change from the next coarser mesh. Writes
+the segment peak and its x, the index, the peak's change from the next coarser mesh and the
+largest mean over a 1 m window (a measure that does not shrink with the cell). Writes
 bench/out/membrane_smoothness/{table,results}_<examples>.{md,csv}.
 """
 # Measured (this 2-core machine, shared; 1 rank unless said; segment peak %, index %):
 #   test void (tests/cover_void.opts), h = 0.5 / 0.25 / 0.125 m:
 #     chord      0.81 / 1.18 / 1.55, index 86 / 50 / 55
-#     projected  0.43 / 0.67 / 0.80, index 3.5 / 1.7 / 1.3 (peak at the finest two 18 % apart)
+#     projected  0.43 / 0.67 / 0.80, index 3.5 / 1.7 / 1.3 (peak at the finest two 18 % apart);
+#       --meshes 4 adds h = 0.0625 m: 0.94, index 0.8, 1 m gauge 0.40 / 0.63 / 0.78 / 0.89
+#       (not converged: docs/benchmarks/membrane_smoothness.md, "The test void")
 #   trench (options/trench.opts, its 8000 steps, not at -tol 1e-4), h = 0.25 / 0.125 / 0.0625 m:
 #     chord      6.35 / 6.14 / 5.47, index 34 / 39 / 50
 #     projected  4.91 / 4.65 / 4.60, index 2.5 / 3.6 / 1.7 (the largest at the support edges)
