@@ -557,7 +557,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   // its support in dynamics (incline: 98 of 114 contact nodes separated by step 100)
   PetscBool strain_projection = PETSC_TRUE;
   PetscBool chain_scaling = sim.set.inertia == InertiaScaling::WaveSpeed ? PETSC_TRUE : PETSC_FALSE;
-  PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
+  PetscOptionsBegin(sim.comm, nullptr, "Membrane chains: mass, strain, contact", nullptr);
   PetscCall(PetscOptionsBool("-chain_inertia_scaling",
                              "Set each chain's mass so its axial wave speed is the fastest "
                              "continuum material's, as -inertia_scaling wave_speed does for "
