@@ -207,7 +207,6 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   PetscFunctionReturn(0);
 }
 
-namespace {
 // The segments' chord strains projected on the grid's nodes and back (-chain_strain_projection):
 // node I gets e_I = sum_k w_Ik l0_k e_k / sum_k w_Ik l0_k, segment k then sum_I w_Ik e_I, with
 // w_Ik the uGIMP weights of a block at the segment's midpoint along its chord (the points'
@@ -219,7 +218,9 @@ namespace {
 // Belytschko 1982). The projection keeps what the grid resolves, as F-bar keeps a cell's
 // volume change: with T_k = J e_k the internal force sum_k T_k tau_k de_k/dx is the gradient of
 // the energy J/2 sum_k l0_k e_k (P e)_k, P the projection (symmetric in the l0-weighted sum).
-void project_strain(const Chain &c, std::vector<double> &e) {
+// (P is taken at given positions: relaxation's at the current ones; Newton's frozen at the load
+// step's start, with its stencils, so that its tangent is exact.)
+void chain_projection(const Chain &c, const double *x, ChainProjection &P) {
   GridView G;
   G.h = c.grid_h;
   for (int d = 0; d < DIM; ++d) {
@@ -229,37 +230,47 @@ void project_strain(const Chain &c, std::vector<double> &e) {
   constexpr int NS = UGIMPShape::NS;
   const int ns = c.n - 1;
   const long long row = c.grid_ncell[0] + 1;
-  std::vector<Weights<UGIMPShape>> W(ns);
-  std::unordered_map<long long, std::pair<double, double>> node;
-  node.reserve(static_cast<size_t>(4 * ns));
+  std::unordered_map<long long, int> id;
+  id.reserve(static_cast<size_t>(4 * ns));
+  P.start.assign(1, 0);
+  P.node.clear();
+  P.w.clear();
+  P.mass.clear();
+  Weights<UGIMPShape> W;
   for (int k = 0; k < ns; ++k) {
-    const double *a = &c.x[k * DIM], *b = &c.x[(k + 1) * DIM];
+    const double *a = &x[k * DIM], *b = &x[(k + 1) * DIM];
     const double xm[DIM] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
     const double l = std::hypot(b[0] - a[0], b[1] - a[1]);
     const double tau[DIM] = {(b[0] - a[0]) / l, (b[1] - a[1]) / l};
     double lp[DIM];
     point_halfsize(G, xm, tau, lp);
-    weights<UGIMPShape>(xm, lp, G.origin, G.h, W[k]);
+    weights<UGIMPShape>(xm, lp, G.origin, G.h, W);
     for (int q = 0; q < NS * NS; ++q) {
-      const double w = W[k].w[q];
+      const double w = W.w[q];
       if (w == 0.0) continue;
-      auto &s = node[(W[k].base[1] + q / NS) * row + W[k].base[0] + q % NS];
-      s.first += w * c.l0[k] * e[k];
-      s.second += w * c.l0[k];
+      const long long key = (W.base[1] + q / NS) * row + W.base[0] + q % NS;
+      const auto it = id.emplace(key, static_cast<int>(P.mass.size())).first;
+      if (it->second == static_cast<int>(P.mass.size())) P.mass.push_back(0.0);
+      P.node.push_back(it->second);
+      P.w.push_back(w);
+      P.mass[it->second] += w * c.l0[k];
     }
-  }
-  for (int k = 0; k < ns; ++k) {
-    double ek = 0;
-    for (int q = 0; q < NS * NS; ++q) {
-      const double w = W[k].w[q];
-      if (w == 0.0) continue;
-      const auto &s = node.at((W[k].base[1] + q / NS) * row + W[k].base[0] + q % NS);
-      ek += w * s.first / s.second;
-    }
-    e[k] = ek;
+    P.start.push_back(static_cast<int>(P.w.size()));
   }
 }
-} // namespace
+
+void chain_project(const Chain &c, const ChainProjection &P, const double *e, double *out) {
+  const int ns = c.n - 1;
+  std::vector<double> eI(P.mass.size(), 0.0);
+  for (int k = 0; k < ns; ++k)
+    for (int q = P.start[k]; q < P.start[k + 1]; ++q) eI[P.node[q]] += P.w[q] * c.l0[k] * e[k];
+  for (size_t I = 0; I < eI.size(); ++I) eI[I] /= P.mass[I];
+  for (int k = 0; k < ns; ++k) {
+    double ek = 0;
+    for (int q = P.start[k]; q < P.start[k + 1]; ++q) ek += P.w[q] * eI[P.node[q]];
+    out[k] = ek;
+  }
+}
 
 void chain_update_tension(Chain &c) {
   c.eps_chord.resize(c.n - 1);
@@ -269,7 +280,11 @@ void chain_update_tension(Chain &c) {
     c.eps_chord[k] = std::hypot(dx, dy) / c.l0[k] - 1.0;
   }
   c.eps = c.eps_chord;
-  if (c.strain_projection) project_strain(c, c.eps);
+  if (c.strain_projection) {
+    ChainProjection P;
+    chain_projection(c, c.x.data(), P);
+    chain_project(c, P, c.eps.data(), c.eps.data());
+  }
   for (int k = 0; k + 1 < c.n; ++k) {
     bool slack = false;
     c.T[k] = c.law.tension(c.eps[k], c.eps_p[k], c.alpha[k], slack);

@@ -69,6 +69,17 @@ struct NewtonSolver {
   std::vector<ChainStencil> cst;
   std::vector<ChainTrial> ctr;
   std::vector<double> cdu;
+  // the DMDA's global numbering (ownership ranges, per rank its first row): the projected chain
+  // coupling reaches nodes beyond the ghosts (chain_implicit.hpp)
+  std::vector<PetscInt> xs, ys, roff;
+  PetscInt global_dof(PetscInt i, PetscInt j, int d) const {
+    const int px = static_cast<int>(xs.size()) - 1, py = static_cast<int>(ys.size()) - 1;
+    int rx = 0, ry = 0;
+    while (rx + 1 < px && i >= xs[rx + 1]) ++rx;
+    while (ry + 1 < py && j >= ys[ry + 1]) ++ry;
+    const PetscInt lx = xs[rx + 1] - xs[rx];
+    return roff[ry * px + rx] + ((j - ys[ry]) * lx + (i - xs[rx])) * DIM + d;
+  }
 };
 
 namespace {
@@ -131,7 +142,7 @@ template <class Shape> PetscErrorCode TrialState(NewtonSolver &ns, Vec U, const 
                                MPI_DOUBLE, MPI_SUM, sim.comm));
     off = 0;
     for (size_t k = 0; k < sim.chains.size(); ++k) {
-      chain_trial(sim.chains[k], ns.cdu.data() + off, ns.ctr[k]);
+      chain_trial(sim.chains[k], ns.cst[k], ns.cdu.data() + off, ns.ctr[k]);
       off += static_cast<size_t>(sim.chains[k].n) * DIM;
     }
   }
@@ -244,6 +255,36 @@ template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
   int missed = 0;
   for (size_t k = 0; k < ns.cst.size(); ++k)
     missed += chain_stiffness(sim.chains[k], ns.cst[k], ns.ctr[k], NB);
+  // -chain_strain_projection: the material term couples segments sharing a projection node, up to
+  // about 7 nodes apart, beyond the stencil: global indices (the matrix takes new nonzeros)
+  std::vector<ChainDofValue> pa, pb;
+  std::vector<PetscInt> gr, gc;
+  std::vector<double> gv;
+  PetscCall(VecGetArrayRead(ns.maskL, &mk));
+  const NodalView ML = LocalView(ns, const_cast<double *>(mk));
+  for (size_t k = 0; k < ns.cst.size(); ++k) {
+    const ChainStencil &S = ns.cst[k];
+    if (!S.project) continue;
+    for (int I = 0; I + 1 < static_cast<int>(S.nstart.size()); ++I) {
+      const double M = chain_projected_coupling(sim.chains[k], S, ns.ctr[k], I, pa, pb);
+      gr.clear();
+      gc.clear();
+      gv.clear();
+      std::vector<double> av;
+      for (const ChainDofValue &e : pa)
+        if (ML.node(e.i, e.j)[e.d] != 0.0) {
+          gr.push_back(ns.global_dof(e.i, e.j, e.d));
+          av.push_back(e.v / M);
+        }
+      if (gr.empty() || pb.empty()) continue;
+      for (const ChainDofValue &e : pb) gc.push_back(ns.global_dof(e.i, e.j, e.d));
+      for (double x : av)
+        for (const ChainDofValue &e : pb) gv.push_back(x * e.v);
+      PetscCall(MatSetValues(B, static_cast<PetscInt>(gr.size()), gr.data(),
+                             static_cast<PetscInt>(gc.size()), gc.data(), gv.data(), ADD_VALUES));
+    }
+  }
+  PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
   // the stencil width covers a chain whose neighbouring points lie within a cell of each other
   PetscCheck(missed == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB,
              "-solver newton: %d couplings of a membrane chain reach beyond the stencil width %d "
@@ -480,12 +521,20 @@ PetscErrorCode ChainStencils(NewtonSolver &ns) {
     G.ncell[d] = sim.grid.ncell[d];
   }
   std::vector<int> count(sim.chains.size()), expect(sim.chains.size());
+  const double *mk;
+  PetscCall(VecGetArrayRead(ns.maskL, &mk));
   for (size_t k = 0; k < sim.chains.size(); ++k) {
     const Chain &c = sim.chains[k];
     count[k] = chain_stencil(c, G, sim.grid, ns.cst[k]);
     expect[k] = c.n - (c.pin[0] ? 1 : 0) - (c.pin[1] ? 1 : 0);
     npts += static_cast<size_t>(c.n) * DIM;
+    if (ns.cst[k].project) chain_stencil_mask(ns.cst[k], LocalView(ns, const_cast<double *>(mk)));
   }
+  PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
+  for (ChainStencil &S : ns.cst) // every rank needs every point's masked weights (columns)
+    if (S.project)
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, S.wm.data(), static_cast<int>(S.wm.size()),
+                                 MPI_DOUBLE, MPI_SUM, sim.comm));
   ns.cdu.assign(npts, 0.0);
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, count.data(), static_cast<int>(count.size()), MPI_INT,
                              MPI_SUM, sim.comm));
@@ -622,9 +671,6 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver &ns) {
                "add -chain_%s_interface bonded, or for slip and separation%s",
                c.name.c_str(), FaceTypeNames[(int)c.top.type], FaceTypeNames[(int)c.bottom.type],
                c.name.c_str(), c.name.c_str(), fix);
-  for (const Chain &c : sim.chains)
-    PetscCheck(!c.strain_projection, sim.comm, PETSC_ERR_SUP,
-               "-solver newton does not support -chain_strain_projection yet%s", fix);
   // without chains -interface_type is the colour-1 body's interface
   PetscCheck(!sim.chains.empty() || sim.iface.type == InterfaceType::Bonded, sim.comm,
              PETSC_ERR_SUP,
@@ -754,6 +800,23 @@ PetscErrorCode NewtonSetup(Simulation &sim) {
   PetscCall(DMDAGetGhostCorners(ns->da, &ns->gs[0], &ns->gs[1], nullptr, &ns->gm[0], &ns->gm[1],
                                 nullptr));
   if (!help) PetscCall(DMCreateMatrix(ns->da, &ns->J)); // -help: the options only, no matrix
+  bool project = false;
+  for (const Chain &c : sim.chains) project = project || c.strain_projection;
+  if (!help && project) { // the projected chain coupling reaches beyond the stencil
+    PetscCall(MatSetOption(ns->J, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_FALSE));
+    PetscCall(MatSetOption(ns->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  }
+  {
+    const PetscInt *ox, *oy;
+    PetscCall(DMDAGetOwnershipRanges(ns->da, &ox, &oy, nullptr));
+    ns->xs.assign(px + 1, 0);
+    ns->ys.assign(py + 1, 0);
+    for (PetscInt r = 0; r < px; ++r) ns->xs[r + 1] = ns->xs[r] + ox[r];
+    for (PetscInt r = 0; r < py; ++r) ns->ys[r + 1] = ns->ys[r] + oy[r];
+    ns->roff.assign(px * py + 1, 0);
+    for (PetscInt r = 0; r < px * py; ++r)
+      ns->roff[r + 1] = ns->roff[r] + ox[r % px] * oy[r / px] * DIM;
+  }
   PetscCall(DMCreateGlobalVector(ns->da, &ns->U));
   PetscCall(VecDuplicate(ns->U, &ns->R));
   PetscCall(VecDuplicate(ns->U, &ns->fext));

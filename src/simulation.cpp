@@ -504,9 +504,9 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   // chains follow -inertia_scaling unless told otherwise: a sheet given the continuum's wave
   // speed is heavy and nearly weightless, which relaxation does not mind but which floats off
   // its support in dynamics (incline: 98 of 114 contact nodes separated by step 100)
-  PetscBool strain_projection = PETSC_FALSE;
+  PetscBool strain_projection = PETSC_TRUE;
   PetscBool chain_scaling = sim.set.inertia == InertiaScaling::WaveSpeed ? PETSC_TRUE : PETSC_FALSE;
-  PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
+  PetscOptionsBegin(sim.comm, nullptr, "Membrane chains: mass, strain, contact", nullptr);
   PetscCall(PetscOptionsBool("-chain_inertia_scaling",
                              "Set each chain's mass so its axial wave speed is the fastest "
                              "continuum material's, as -inertia_scaling wave_speed does for "
@@ -516,7 +516,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(PetscOptionsBool("-chain_strain_projection",
                              "Each chain segment's strain is the projection of the chord strains "
                              "on the grid's nodes (removes the cell-period strain a sheet bending "
-                             "on the grid's interpolation carries; relaxation only)",
+                             "on the grid's interpolation carries); 0: each segment's chord strain",
                              nullptr, strain_projection, &strain_projection, nullptr));
   PetscCall(PmpmOptionsReal("-chain_tail_share",
                             "A sheet with less than this share of a node's mass and no body on "

@@ -92,7 +92,7 @@ struct Chain {
   // -chain_strain_projection: each segment's strain is the grid's projection of the chord
   // strains (chain.cpp, chain_update_tension); eps_chord keeps the chord strains. The grid's
   // geometry is kept for it (every rank projects all segments, as it holds all points).
-  bool strain_projection = false;
+  bool strain_projection = false; // set from -chain_strain_projection (on by default)
   double grid_h = 0, grid_origin[DIM] = {0, 0};
   PetscInt grid_ncell[DIM] = {0, 0};
   std::vector<double> eps_chord;
@@ -108,6 +108,22 @@ struct Chain {
 
   double wave_speed() const { return std::sqrt(law.J / line_mass); }
 };
+
+// The strain projection (-chain_strain_projection) at given positions x (DIM per point): segment
+// k's chord strain goes to node I with w_Ik, the uGIMP weight there of a block at the segment's
+// midpoint along its chord (the points' blocks), node I's strain is e_I = sum_k w_Ik l0_k e_k /
+// M_I with M_I = sum_k w_Ik l0_k, and segment k's projected strain sum_I w_Ik e_I. The operator
+// is linear in e: (P e)_k = sum_j P_kj e_j with P_kj = sum_I w_Ik w_Ij l0_j / M_I, and l0_k P_kj
+// is symmetric. Nodes are numbered compactly in the order segments first reach them.
+struct ChainProjection {
+  std::vector<int> start;   // segment k's entries are [start[k], start[k + 1])
+  std::vector<int> node;    // an entry's node (compact number)
+  std::vector<double> w;    // an entry's weight w_Ik
+  std::vector<double> mass; // per node: M_I
+};
+void chain_projection(const Chain &c, const double *x, ChainProjection &P);
+// out = P e (out may be e).
+void chain_project(const Chain &c, const ChainProjection &P, const double *e, double *out);
 
 // Build the points from a spec: spacing at most `ds` along the polyline; material constants and
 // law from -mat_<material>_*; friction per face from -chain_<name>_* (defaults: the
