@@ -109,24 +109,25 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   PetscCall(PmpmOptionsReal("-hardening", "Linear hardening modulus (Pa), >= 0 (elastoplastic)",
                             nullptr, H, &H, nullptr));
   PetscOptionsEnd();
-  PetscCheck(hasE, comm, PETSC_ERR_USER_INPUT, "-%sE is required (Young's modulus in Pa)",
-             prefix.c_str());
-  PetscCheck(c.E > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sE must be > 0 (got %g)", prefix.c_str(),
-             c.E);
-  PetscCheck(c.nu >= 0 && c.nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-%snu must be in [0, 0.5) (got %g)", prefix.c_str(), c.nu);
-  PetscCheck(c.gamma >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sgamma must be >= 0 (got %g)",
-             prefix.c_str(), c.gamma);
-  PetscCheck(c.density >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sdensity must be > 0 (got %g)",
-             prefix.c_str(), c.density);
+  PmpmCheckInput(hasE, comm, PETSC_ERR_USER_INPUT, "-%sE is required (Young's modulus in Pa)",
+                 prefix.c_str());
+  PmpmCheckInput(c.E > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sE must be > 0 (got %g)",
+                 prefix.c_str(), c.E);
+  PmpmCheckInput(c.nu >= 0 && c.nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-%snu must be in [0, 0.5) (got %g)", prefix.c_str(), c.nu);
+  PmpmCheckInput(c.gamma >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sgamma must be >= 0 (got %g)",
+                 prefix.c_str(), c.gamma);
+  PmpmCheckInput(c.density >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sdensity must be > 0 (got %g)",
+                 prefix.c_str(), c.density);
   if (c.density <= 0) c.density = c.gamma > 0 ? c.gamma / 9.81 : 1000.0;
   const double Eeff = c.stiffness == StiffnessKind::PlaneStrain ? c.E / (1 - c.nu * c.nu) : c.E;
   c.law.J = Eeff * c.thickness;
   if (c.law.kind == MembraneLawKind::Elastoplastic) {
-    PetscCheck(sigma_y > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-%syield_stress must be > 0 with -%slaw elastoplastic (got %g)", prefix.c_str(),
-               prefix.c_str(), sigma_y);
-    PetscCheck(H >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%shardening must be >= 0", prefix.c_str());
+    PmpmCheckInput(sigma_y > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%syield_stress must be > 0 with -%slaw elastoplastic (got %g)", prefix.c_str(),
+                   prefix.c_str(), sigma_y);
+    PmpmCheckInput(H >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%shardening must be >= 0",
+                   prefix.c_str());
     c.law.yield_T = sigma_y * c.thickness;
     c.law.hardening = H * c.thickness;
   }
@@ -162,14 +163,16 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   const char *fname[2] = {"top", "bottom"};
   for (int k = 0; k < 2; ++k) {
     if (delta[k] >= 0) {
-      PetscCheck(delta[k] <= 60, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "-%sdelta_%s must be in [0, 60] degrees (got %g)", cp.c_str(), fname[k], delta[k]);
+      PmpmCheckInput(delta[k] <= 60, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                     "-%sdelta_%s must be in [0, 60] degrees (got %g)", cp.c_str(), fname[k],
+                     delta[k]);
       faces[k]->mu = std::tan(delta[k] * M_PI / 180);
     }
-    PetscCheck(faces[k]->mu >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%smu_%s must be >= 0 (got %g)",
-               cp.c_str(), fname[k], faces[k]->mu);
-    PetscCheck(faces[k]->adhesion >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "-%sadhesion_%s must be >= 0 (got %g)", cp.c_str(), fname[k], faces[k]->adhesion);
+    PmpmCheckInput(faces[k]->mu >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%smu_%s must be >= 0 (got %g)", cp.c_str(), fname[k], faces[k]->mu);
+    PmpmCheckInput(faces[k]->adhesion >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%sadhesion_%s must be >= 0 (got %g)", cp.c_str(), fname[k],
+                   faces[k]->adhesion);
   }
 
   // points: each polyline piece divided evenly with spacing at most ds

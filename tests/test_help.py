@@ -3,7 +3,8 @@ exit 0): for every scene, `pmpm -scene X -help` alone, with no options file, mus
 nothing, and list the global options, the scene's own (-X_...), its materials' (-mat_..._model and
 every material law's options) and the Newton solver's. The scenes are the ones pmpm names when -scene is
 unknown; every options/*.opts must use one of them. `pmpm -help` without a scene lists the global
-options and the scenes.
+options and the scenes. A cover whose membrane's material is wrong still lists that membrane's
+material and face options.
 
 usage: test_help.py EXE OUTDIR
 """
@@ -81,5 +82,14 @@ for s in scenes:
             f"with every law's options ({len(sheets)} membranes), the global and Newton options",
             ok,
             f"(exit {code}{': ' + log.strip()[-300:] if code else ''})")
+# a cover with a membrane whose material is wrong: -help still lists the membrane's material and
+# both faces' interface options (the chain's checks are skipped, not stopped at)
+code, log = pmpm(["-options_file", os.path.join(ROOT, "tests", "cover_column.opts"),
+                  "-mat_hdpe_E", "-1", "-help"])
+FACES = ["-chain_hdpe_interface", "-chain_hdpe_mu_top", "-chain_hdpe_delta_bottom",
+         "-chain_hdpe_adhesion_top", "-mat_hdpe_law", "-mat_hdpe_yield_stress"]
+c.check("a cover whose membrane has -mat_hdpe_E -1: -help exits 0 and lists its material's and "
+        "faces' options", code == 0 and all(listed(log, o) for o in FACES),
+        f"(exit {code}; missing {[o for o in FACES if not listed(log, o)]})")
 c.check("-help wrote nothing", os.listdir(out) == [], f"({os.listdir(out)})")
 c.done()
