@@ -525,19 +525,21 @@ void chain_friction_capacity(const GridView &L, const GridView &G,
       if (W.base[0] < L.gs[0] || W.base[1] < L.gs[1] || W.base[0] + NS > L.gs[0] + L.gm[0] ||
           W.base[1] + NS > L.gs[1] + L.gm[1])
         continue;
-      // the point's normal impulse on each face over its length: its shares w l_i / AREA of its
-      // nodes' impulses, so that the points' impulses add up to the sheet's share of the nodes'
-      // (a ratio of the stencil's sums, sum w N / sum w LEN, overstated a level sheet's pressure
-      // by 13-17 % once it lay between two rows of nodes), and the weight of the nodes where that
-      // face is in contact
-      double n[2] = {0, 0}, wc[2] = {0, 0};
+      // the point's pressure on each face: its stencil's normal impulse over its sheet length
+      // (every node: a node where the sheet is thin carries little of the point's length), and
+      // the weight of the nodes where that face is in contact. (Not the point's shares of its
+      // nodes' impulses, w l / AREA, as its reported pressure is: that is right where the ratio
+      // of sums overstates a sheet between two rows of nodes by 13-17 %, but with the projected
+      // strain it let the pulled-out sheet go unstable at -cfl 0.5; docs/limitations.md.)
+      double n[2] = {0, 0}, len = 0, wc[2] = {0, 0};
       for (int q = 0; q < NS * NS; ++q) {
         if (W.w[q] == 0.0) continue;
         const double *ns = L.node(W.base[0] + q % NS, W.base[1] + q / NS) + c.slot;
+        len += W.w[q] * ns[ChainDof::LEN];
         for (int f = 0; f < 2; ++f) {
           const double N = ns[f == 0 ? ChainDof::NTOP : ChainDof::NBOT];
           if (N <= 0) continue;
-          n[f] += W.w[q] * N / ns[ChainDof::AREA];
+          n[f] += W.w[q] * N;
           wc[f] += W.w[q];
         }
       }
@@ -550,8 +552,9 @@ void chain_friction_capacity(const GridView &L, const GridView &G,
         const double *ns = L.node(a, b) + c.slot;
         double *out = G.node(a, b) + c.slot;
         for (int f = 0; f < 2; ++f)
-          if (ns[f == 0 ? ChainDof::NTOP : ChainDof::NBOT] > 0)
-            out[f == 0 ? ChainDof::PTOP : ChainDof::PBOT] += W.w[q] / wc[f] * c.length[i] * n[f];
+          if (len > 0 && ns[f == 0 ? ChainDof::NTOP : ChainDof::NBOT] > 0)
+            out[f == 0 ? ChainDof::PTOP : ChainDof::PBOT] +=
+                W.w[q] / wc[f] * c.length[i] * n[f] / len;
       }
     }
 }
