@@ -1,6 +1,7 @@
 // Checkpoint and restart (checkpoint.hpp). File layout (PetscViewerHDF5):
 //   /run        attributes: format, the run's identity (scene, cell size, grid, particles at
-//               setup, chains), the stage loop's position and RunState; dataset budget_w_local
+//               setup, chains), the stage loop's position, RunState and the solver's state
+//               (EquilibriumSolver::checkpoint_write); relaxation's dataset budget_w_local
 //               (one entry per rank)
 //   /particles  counts (one entry per rank) and one dataset per swarm field, the ranks' blocks in
 //               rank order (integers stored as reals, exact)
@@ -366,6 +367,48 @@ PetscErrorCode CheckpointReadReal(PetscViewer v, const char *name, double *x) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode CheckpointWriteInt(PetscViewer v, const char *name, PetscInt x) {
+  char *group = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5GetGroup(v, nullptr, &group));
+  PetscCall(PutInt(v, group, name, x));
+  PetscCall(PetscFree(group));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckpointReadInt(PetscViewer v, const char *name, PetscInt *x) {
+  char *group = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5GetGroup(v, nullptr, &group));
+  const std::string g = group ? group : "/";
+  PetscCall(PetscFree(group));
+  PetscCall(GetInt(v, g.c_str(), name, g_reading, x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckpointWriteRankShare(MPI_Comm comm, PetscViewer v, const char *name, double x) {
+  PetscFunctionBeginUser;
+  PetscCall(WritePerRank(comm, v, name, x));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckpointReadRankShare(MPI_Comm comm, PetscViewer v, const char *name,
+                                       const std::string &file, PetscInt ranks, double *x) {
+  std::vector<double> w;
+  PetscMPIInt rank, size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(NeedDataset(v, name, file));
+  PetscCall(ReadAll(comm, v, name, w));
+  PetscCheck((PetscInt)w.size() == ranks, comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-restart %s: damaged checkpoint (/run/%s)", file.c_str(), name);
+  double sum = 0;
+  for (double y : w) sum += y;
+  *x = ranks == size ? w[rank] : (rank == 0 ? sum : 0.0);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   PetscViewer v;
   const RunState &r = sim.run;
@@ -400,7 +443,6 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   PetscCall(PutReal(v, R, "max_speed", r.max_speed));
   PetscCall(PutReal(v, R, "ratio", r.ratio));
   PetscCall(PutReal(v, R, "kinetic", r.kinetic));
-  PetscCall(PutReal(v, R, "kinetic_prev", r.kinetic_prev));
   PetscCall(PutInt(v, R, "converged", r.converged ? 1 : 0));
   PetscCall(PutInt(v, R, "all_converged", r.all_converged ? 1 : 0));
   PetscCall(PutReal(v, R, "wall_seconds", r.wall_seconds));
@@ -409,11 +451,7 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   PetscCall(PutInt(v, R, "rebalances", sim.balance.rebalances));
   PetscCall(PutReal(v, R, "rebalance_before", sim.balance.last_before));
   PetscCall(PutReal(v, R, "rebalance_after", sim.balance.last_after));
-  PetscCall(PutInt(v, R, "kinetic_resets", r.kinetic_resets));
-  PetscCall(PutReal(v, R, "c0", r.c0));
-  PetscCall(PutReal(v, R, "ke_window", r.ke_window));
-  PetscCall(PutReal(v, R, "budget_e0", r.budget_e0));
-  PetscCall(PutReal(v, R, "budget_floor", r.budget_floor));
+  PetscCall(sim.solver->checkpoint_write(sim, v, R)); // relaxation's damping and energy budget
   PetscCall(PutReal(v, R, "iface_impulse_compression", sim.iface_impulse[0]));
   PetscCall(PutReal(v, R, "iface_impulse_tension", sim.iface_impulse[1]));
   PetscCall(PutReal(v, R, "contact_impulse_compression", sim.contact_impulse[0]));
@@ -421,7 +459,6 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   const InterfaceStats &is = sim.iface_stats;
   const ContactStats &cs = sim.contact_stats;
   PetscCall(PetscViewerHDF5PushGroup(v, R));
-  PetscCall(WritePerRank(sim.comm, v, "budget_w_local", r.budget_w_local));
   PetscCall(CheckpointWriteArray(v, "iface_stats",
                                  {is.contact_nodes, is.slip_nodes, is.compression, is.tension}));
   std::vector<double> c = {cs.contact_nodes, cs.slip_nodes, cs.separated_nodes, cs.compression,
@@ -603,7 +640,6 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
   PetscCall(GetReal(v, R, "max_speed", file, &r.max_speed));
   PetscCall(GetReal(v, R, "ratio", file, &r.ratio));
   PetscCall(GetReal(v, R, "kinetic", file, &r.kinetic));
-  PetscCall(GetReal(v, R, "kinetic_prev", file, &r.kinetic_prev));
   PetscCall(GetInt(v, R, "converged", file, &conv));
   PetscCall(GetInt(v, R, "all_converged", file, &allc));
   r.converged = conv != 0;
@@ -614,26 +650,14 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
   PetscCall(GetInt(v, R, "rebalances", file, &sim.balance.rebalances));
   PetscCall(GetReal(v, R, "rebalance_before", file, &sim.balance.last_before));
   PetscCall(GetReal(v, R, "rebalance_after", file, &sim.balance.last_after));
-  PetscCall(GetInt(v, R, "kinetic_resets", file, &r.kinetic_resets));
-  PetscCall(GetReal(v, R, "c0", file, &r.c0));
-  PetscCall(GetReal(v, R, "ke_window", file, &r.ke_window));
-  PetscCall(GetReal(v, R, "budget_e0", file, &r.budget_e0));
-  PetscCall(GetReal(v, R, "budget_floor", file, &r.budget_floor));
+  PetscCall(sim.solver->checkpoint_read(sim, v, R, file, ranks));
   PetscCall(GetReal(v, R, "iface_impulse_compression", file, &sim.iface_impulse[0]));
   PetscCall(GetReal(v, R, "iface_impulse_tension", file, &sim.iface_impulse[1]));
   PetscCall(GetReal(v, R, "contact_impulse_compression", file, &sim.contact_impulse[0]));
   PetscCall(GetReal(v, R, "contact_impulse_tension", file, &sim.contact_impulse[1]));
   PetscCall(PetscViewerHDF5PushGroup(v, R));
   {
-    std::vector<double> w, is, cs;
-    PetscCall(NeedDataset(v, "budget_w_local", file));
-    PetscCall(ReadAll(sim.comm, v, "budget_w_local", w));
-    PetscCheck((PetscInt)w.size() == ranks, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
-               "-restart %s: damaged checkpoint (/run/budget_w_local)", F);
-    // this rank's share of the loads' work on the same rank count; else all of it on rank 0
-    double sum = 0;
-    for (double x : w) sum += x;
-    r.budget_w_local = ranks == sim.size ? w[sim.rank] : (sim.rank == 0 ? sum : 0.0);
+    std::vector<double> is, cs;
     PetscCall(CheckpointReadArray(v, "iface_stats", is));
     PetscCall(CheckpointReadArray(v, "contact_stats", cs));
     std::vector<double> capped;

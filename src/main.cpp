@@ -16,7 +16,8 @@ static PetscLogStage st_setup, st_relax, st_output;
 // Every option has been read by the end of setup: one that was not is misspelled, or meant for
 // another scene or material model, and would silently leave its default in place (on a cluster,
 // a wasted allocation). Name it and stop before the run.
-static PetscErrorCode CheckUnusedOptions(MPI_Comm comm, const std::string &scene, bool newton) {
+static PetscErrorCode CheckUnusedOptions(MPI_Comm comm, const std::string &scene,
+                                         const EquilibriumSolver &solver) {
   PetscInt n = 0;
   char **names = nullptr, **values = nullptr;
   PetscFunctionBeginUser;
@@ -24,9 +25,8 @@ static PetscErrorCode CheckUnusedOptions(MPI_Comm comm, const std::string &scene
   std::string list;
   PetscInt unused = 0;
   for (PetscInt k = 0; k < n; ++k) {
-    // under -solver newton MUMPS reads its -mat_mumps_* options at the first factorisation,
-    // after this check
-    if (newton && !std::strncmp(names[k], "mat_mumps_", 10)) continue;
+    // the solver's options read after this check (Newton's MUMPS at its first factorisation)
+    if (solver.reads_later(names[k])) continue;
     list += std::string(unused++ ? ", -" : "-") + names[k];
   }
   PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
@@ -68,7 +68,7 @@ static PetscErrorCode RunScene(double h, bool estimating, bool aside, const Judg
     PetscCall(SimulationDestroy(sim));
     PetscFunctionReturn(0);
   }
-  PetscCall(CheckUnusedOptions(sim.comm, sim.set.scene, sim.set.solver == Solver::Newton));
+  PetscCall(CheckUnusedOptions(sim.comm, sim.set.scene, *sim.solver));
   if (estimating) {
     PetscCheck(sim.set.restart.empty(), sim.comm, PETSC_ERR_ARG_INCOMP,
                "-estimate_error cannot follow -restart (it runs every mesh from the start)");

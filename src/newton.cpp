@@ -24,19 +24,39 @@
 //  - Default linear solver: a direct LU by MUMPS (any rank count; PETSc's own LU is serial), the
 //    line search bt; every -snes_/-ksp_/-pc_ option overrides them.
 #include "pmpm/options.hpp"
-#include "pmpm/newton.hpp"
+#include "pmpm/solver.hpp"
 #include "pmpm/chain_implicit.hpp"
 #include "pmpm/cycle.hpp"
 #include "pmpm/degradation.hpp"
 #include "pmpm/implicit_kernels.hpp"
+#include "pmpm/stress_update.hpp"
 #include <petscsnes.h>
 #include <cmath>
 #include <cstring>
 
 namespace pmpm {
 
-struct NewtonSolver {
+// The solver's state: its options, the SNES on its DMDA, the trial state of the current load
+// step, and its work over the run (the summary's "newton" member).
+struct NewtonSolver final : EquilibriumSolver {
+  const char *name() const override { return "newton"; }
+  PetscErrorCode setup(Simulation &sim) override;
+  PetscErrorCode solve_stage(Simulation &sim) override;
+  std::string report() const override {
+    return "\"newton\": {\"load_steps\": " + std::to_string(solved_steps) +
+           ", \"nonlinear_iterations\": " + std::to_string(newton_its) +
+           ", \"linear_iterations\": " + std::to_string(linear_its) + "},\n  ";
+  }
+  PetscErrorCode destroy() override;
+  // bonded chains and interfaces only (CheckSupported)
+  bool supports(SolverFeature f) const override { return f != SolverFeature::FrictionalFaces; }
+  // MUMPS reads its -mat_mumps_* options at the first factorisation
+  bool reads_later(const char *option) const override {
+    return !std::strncmp(option, "mat_mumps_", 10);
+  }
+
   Simulation *sim = nullptr;
+  PetscInt solved_steps = 0, newton_its = 0, linear_its = 0; // over the run
   DM da = nullptr;
   SNES snes = nullptr;
   Mat J = nullptr;
@@ -149,18 +169,8 @@ template <class Shape> PetscErrorCode TrialState(NewtonSolver &ns, Vec U, const 
   implicit_deformation(P.n, ns.G.data(), P.F, ns.Fnew.data());
   ns.Gm.resize(n * DIM * DIM);
   implicit_midpoint_gradient(P.n, ns.G.data(), ns.Gm.data());
-  for (size_t k = 0; k < sim.mats.size(); ++k) {
-    StressBatch b;
-    b.n = static_cast<int>(sim.mat_idx[k].size());
-    if (b.n == 0) continue;
-    b.idx = sim.mat_idx[k].data();
-    b.dudx = ns.Gm.data();
-    b.F = ns.Fnew.data();
-    b.stress = ns.snew.data();
-    b.eps_p = ns.epsp.data();
-    if (!ns.eigen.empty()) b.eigen = ns.eigen.data();
-    sim.mats[k].model->update_stress(b);
-  }
+  const double *eigen = ns.eigen.empty() ? nullptr : ns.eigen.data();
+  UpdateStresses(sim, ns.Gm.data(), ns.Fnew.data(), ns.snew.data(), ns.epsp.data(), eigen);
   implicit_piola(P.n, ns.G.data(), ns.snew.data(), ns.Pk.data());
   PetscFunctionReturn(0);
 }
@@ -465,18 +475,9 @@ template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
   }
   PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
   PetscCall(VecRestoreArrayRead(ns.Uloc, &u));
-  for (size_t k = 0; k < sim.mats.size(); ++k) { // the committed update, in place
-    StressBatch b;
-    b.n = static_cast<int>(sim.mat_idx[k].size());
-    if (b.n == 0) continue;
-    b.idx = sim.mat_idx[k].data();
-    b.dudx = ns.Gm.data();
-    b.F = P.F;
-    b.stress = P.stress;
-    b.eps_p = P.eps_p;
-    if (!ns.eigen.empty()) b.eigen = ns.eigen.data();
-    sim.mats[k].model->update_stress(b);
-  }
+  // the committed update, in place
+  UpdateStresses(sim, ns.Gm.data(), P.F, P.stress, P.eps_p,
+                 ns.eigen.empty() ? nullptr : ns.eigen.data());
   PetscCall(ParticlesRestoreView(sim.parts, P));
   // the chains: the trial positions of the converged du (alike on every rank), then the law's
   // committed state and the tensions from them
@@ -496,7 +497,7 @@ template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
             "-solver newton: load step %" PetscInt_FMT " (load factor %g) moved particle %.0f "
             "off the grid or inverted it (x = (%g, %g) m). Raise -newton_load_steps (now "
             "%" PetscInt_FMT ") or enlarge the grid.",
-            sim.run.load_steps + 1, ns.lambda, bad[1], bad[2], bad[3], ns.load_steps);
+            ns.solved_steps + 1, ns.lambda, bad[1], bad[2], bad[3], ns.load_steps);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &left, 1, MPIU_INT, MPI_SUM, sim.comm));
   if (left > 0) {
@@ -621,8 +622,8 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   PetscCall(SNESGetConvergedReason(ns.snes, reason));
   PetscCall(SNESGetIterationNumber(ns.snes, &its));
   PetscCall(SNESGetLinearSolveIterations(ns.snes, &lits));
-  sim.run.newton_its += its;
-  sim.run.linear_its += lits;
+  ns.newton_its += its;
+  ns.linear_its += lits;
   if (*reason <= 0) PetscFunctionReturn(0);
   PetscCall(IncrementInCells(ns, &ns.frac));
   if (limit && ns.cell_fraction > 0 && ns.frac > ns.cell_fraction) {
@@ -635,7 +636,7 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   else
     PetscCall(Commit<UGIMPShape>(ns));
   PetscCall(PetscLogEventEnd(ev_commit, 0, 0, 0, 0));
-  ++sim.run.load_steps;
+  ++ns.solved_steps;
   ++sim.run.step;
   ++sim.run.stage_step;
   sim.run.time = t1; // pseudo-time: the stage's path parameter
@@ -645,7 +646,7 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
     PetscCall(PetscPrintf(sim.comm,
                           "  load step %4" PetscInt_FMT "  %s %.4f  Newton its %2" PetscInt_FMT
                           "  linear its %3" PetscInt_FMT "  |R| %.3e  max|du|/h %.2e  (%s)",
-                          sim.run.load_steps, path.ramp_loads ? "load" : "stage", t1, its, lits, rn,
+                          ns.solved_steps, path.ramp_loads ? "load" : "stage", t1, its, lits, rn,
                           ns.frac, SNESConvergedReasons[*reason]));
     // the load steps' ETA: the stage's time so far over the path covered (the equilibrium steps
     // that follow are cheaper: one Newton iteration each)
@@ -732,12 +733,16 @@ PetscErrorCode BoomerAMGDefaults() {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode NewtonSetup(Simulation &sim) {
+// Read the -newton_* options, refuse what Newton cannot solve yet (chains in contact, frictional
+// interfaces, staged scenes other than shrinkage, materials without a consistent tangent, ...)
+// with a clear error, and create the SNES on its own DMDA (DIM dofs per node, box stencil as wide
+// as the shape's support) with every -snes_/-ksp_/-pc_ option applied. With -help only lists the
+// options.
+PetscErrorCode NewtonSolver::setup(Simulation &sim) {
   PetscBool help = PETSC_FALSE, set = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
-  auto ns = new NewtonSolver;
-  sim.newton = ns;
+  NewtonSolver *ns = this;
   ns->sim = &sim;
   PetscOptionsBegin(sim.comm, "newton_", "Implicit solver (-solver newton)", nullptr);
   PetscCall(PmpmOptionsInt("-load_steps",
@@ -855,22 +860,21 @@ PetscErrorCode NewtonSetup(Simulation &sim) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode NewtonDestroy(Simulation &sim) {
-  NewtonSolver *ns = sim.newton;
+PetscErrorCode NewtonSolver::destroy() {
+  NewtonSolver *ns = this;
   PetscFunctionBeginUser;
-  if (!ns) PetscFunctionReturn(0);
   PetscCall(SNESDestroy(&ns->snes));
   PetscCall(MatDestroy(&ns->J));
   for (Vec *v : {&ns->U, &ns->R, &ns->fext, &ns->maskG, &ns->Uloc, &ns->Rloc, &ns->maskL})
     PetscCall(VecDestroy(v));
   PetscCall(DMDestroy(&ns->da));
-  delete ns;
-  sim.newton = nullptr;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Newton(Simulation &sim) {
-  NewtonSolver &ns = *sim.newton;
+// Equilibrium of the current stage by load steps (-newton_load_steps), then equilibrium steps at
+// full load until the unbalanced-force ratio of relaxation (StaticResidual) is <= -tol.
+PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
+  NewtonSolver &ns = *this;
   RunState &run = sim.run;
   const Settings &s = sim.set;
   PetscFunctionBeginUser;
@@ -976,8 +980,12 @@ PetscErrorCode Newton(Simulation &sim) {
         "%s: unbalanced-force ratio %.3e %s %g after %" PetscInt_FMT " load steps (%" PetscInt_FMT
         " in all), %" PetscInt_FMT " Newton and %" PetscInt_FMT " linear iterations (%.2f s)\n",
         run.converged ? "converged" : "NOT converged", run.ratio, run.converged ? "<=" : ">", s.tol,
-        run.stage_step, run.load_steps, run.newton_its, run.linear_its, run.stage_seconds));
+        run.stage_step, ns.solved_steps, ns.newton_its, ns.linear_its, run.stage_seconds));
   PetscFunctionReturn(0);
+}
+
+std::unique_ptr<EquilibriumSolver> make_newton_solver() {
+  return std::make_unique<NewtonSolver>();
 }
 
 } // namespace pmpm

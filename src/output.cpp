@@ -242,12 +242,9 @@ PetscErrorCode OutputSummary(Simulation &sim, const std::string &results,
               json_kv("tension_ratio", I[0] > 0 ? I[1] / I[0] : 0.0) + "\n  },\n  ";
     }
     iface += ChainSummaryJson(sim);
-    // the equilibrium solver, and Newton's work (load steps, nonlinear and linear iterations)
-    std::string solver = std::string("\"solver\": \"") + SolverNames[(int)s.solver] + "\",\n  ";
-    if (s.solver == Solver::Newton)
-      solver += "\"newton\": {\"load_steps\": " + std::to_string(sim.run.load_steps) +
-                ", \"nonlinear_iterations\": " + std::to_string(sim.run.newton_its) +
-                ", \"linear_iterations\": " + std::to_string(sim.run.linear_its) + "},\n  ";
+    // the equilibrium solver, and its own report (Newton: load steps, nonlinear and linear
+    // iterations)
+    std::string solver = "\"solver\": \"" + s.solver + "\",\n  " + sim.solver->report();
     iface = solver + iface;
     std::fprintf(
         f,

@@ -2,7 +2,6 @@
 #include "pmpm/options.hpp"
 #include "pmpm/simulation.hpp"
 #include "pmpm/materials/registry.hpp"
-#include "pmpm/newton.hpp"
 #include "pmpm/prerun.hpp"
 #include <algorithm>
 #include <cmath>
@@ -143,12 +142,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                                "that wrote it; any rank count)",
                                nullptr, restart, restart, sizeof(restart), &set));
   s.restart = set ? std::string(restart) : "";
-  PetscCall(PmpmOptionsEnum("-solver",
-                            "Equilibrium solver: relaxation (explicit dynamic relaxation) or "
-                            "newton (implicit load steps on PETSc SNES; -newton_*, -snes_*, "
-                            "-ksp_*, -pc_* options)",
-                            nullptr, SolverNames, (PetscEnum)s.solver, (PetscEnum *)&s.solver,
-                            nullptr));
+  PetscEnum solver = PetscEnum(0); // the table's index (the default: its first entry)
+  for (size_t k = 0; k < Solvers().size(); ++k)
+    if (s.solver == Solvers()[k].name) solver = PetscEnum(k);
+  PetscCall(PmpmOptionsEnum("-solver", SolverHelp().c_str(), nullptr, SolverEnumNames(), solver,
+                            &solver, nullptr));
+  s.solver = Solvers()[(size_t)solver].name;
   PetscOptionsEnd();
 
   PmpmCheckInput(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
@@ -390,11 +389,28 @@ void AssignBodies(const Simulation &sim, ParticleList &init) {
 }
 } // namespace
 
+namespace {
+// The solver's options, what it cannot solve, its own objects; under -help every solver's
+// options (the chosen one's first, then the table's order).
+PetscErrorCode SolverSetup(Simulation &sim, bool help) {
+  PetscFunctionBeginUser;
+  PetscCall(sim.solver->setup(sim));
+  for (const SolverEntry &e : Solvers())
+    if (help && sim.set.solver != e.name) {
+      std::unique_ptr<EquilibriumSolver> other = e.make();
+      PetscCall(other->setup(sim));
+      PetscCall(other->destroy());
+    }
+  PetscFunctionReturn(0);
+}
+} // namespace
+
 PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
   PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
   PetscCall(SettingsFromOptions(sim.comm, sim.set));
+  sim.solver = make_solver(sim.set.solver); // the scene's setup may ask it what it supports
   PetscBool help = PETSC_FALSE; // -help lists the options and runs nothing: nothing to check
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (!help) PetscCall(CheckOutputDir(sim.comm, sim.set.output_dir));
@@ -577,7 +593,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
       sim.ncell[d] = std::min<PetscInt>(std::max<PetscInt>(sim.ncell[d], 4 * sim.size), 256);
     PetscCall(GridCreate(sim.comm, sim.set.h > 0 ? sim.set.h : 1.0, sim.origin, sim.ncell, nbody,
                          nchain * ChainDof::NDOF, sim.grid));
-    PetscCall(NewtonSetup(sim));
+    PetscCall(SolverSetup(sim, true));
     PetscFunctionReturn(0);
   }
   const bool iface = sim.iface.type != InterfaceType::Bonded && nchain == 0;
@@ -609,8 +625,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   sim.particles_setup = n;
   PetscCheck(n > 0 || nchain > 0, sim.comm, PETSC_ERR_USER_INPUT,
              "the scene produced no particles: check the geometry options against -cell_size");
-  // -solver newton: its options, what it cannot solve yet, its SNES (with -help: its options)
-  if (sim.set.solver == Solver::Newton || help) PetscCall(NewtonSetup(sim));
+  PetscCall(SolverSetup(sim, false));
   // Step 0: monitor() also sees the initial state, where scenes may set an initial velocity field.
   PetscCall(sim.scene->monitor(sim));
   PetscFunctionReturn(0);
@@ -618,7 +633,8 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
 
 PetscErrorCode SimulationDestroy(Simulation &sim) {
   PetscFunctionBeginUser;
-  PetscCall(NewtonDestroy(sim));
+  if (sim.solver) PetscCall(sim.solver->destroy());
+  sim.solver.reset();
   PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
   PetscCall(InterfaceGridDestroy(sim.iface_grid));
   PetscCall(GridDestroy(sim.grid));

@@ -1,10 +1,10 @@
-// The stage loop: one equilibrium solver (dynamic relaxation, relaxation.cpp, or Newton load
-// steps under -solver newton, newton.cpp) called once per stage. Stage 0 is the scene's initial
-// state under its loads (for a cover, the geostatic state); each later stage is a change the scene
-// makes (waste shrinks, a void opens) followed by a new equilibrium, which the scene records.
+// The stage loop: the equilibrium solver (solver.hpp: dynamic relaxation, relaxation.cpp, or
+// Newton load steps under -solver newton, newton.cpp) called once per stage. Stage 0 is the scene's
+// initial state under its loads (for a cover, the geostatic state); each later stage is a change
+// the scene makes (waste shrinks, a void opens) followed by a new equilibrium, which the scene
+// records.
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
-#include "pmpm/newton.hpp"
 #include <cmath>
 #include <cstdio>
 
@@ -29,10 +29,7 @@ PetscErrorCode RunStages(Simulation &sim) {
       sim.stage_shrink = 0;
       PetscCall(sim.scene->begin_stage(sim, k));
     }
-    if (sim.set.solver == Solver::Newton)
-      PetscCall(Newton(sim));
-    else
-      PetscCall(Relax(sim)); // clears sim.resume
+    PetscCall(sim.solver->solve_stage(sim)); // clears sim.resume
     sim.run.all_converged = sim.run.all_converged && sim.run.converged;
     PetscCall(sim.scene->end_stage(sim, k));
     // a stage that stopped short of -tol, unless the scene ended it (a collapse is its answer)
@@ -41,7 +38,7 @@ PetscErrorCode RunStages(Simulation &sim) {
     if (sim.scene->finished()) break;
     if (k < n) PetscCall(BalanceRun(sim)); // -balance run: the partition follows the particles
     // after the scene's record: a checkpoint at every stage's end, or at a -checkpoint_every step
-    // that ended the stage (Relax writes the others)
+    // that ended the stage (relaxation writes the others)
     const PetscInt every = sim.set.checkpoint_every;
     if (sim.set.checkpoint_stage_end || (every > 0 && sim.run.step % every == 0))
       PetscCall(CheckpointWrite(sim, false));

@@ -2,9 +2,10 @@
 // complete state of the run to <output_dir>/checkpoint_<step>.h5 (HDF5, PetscViewerHDF5): every
 // swarm field of every particle (per-rank blocks in rank order, so a restart on the same rank
 // count gives each rank back its own particles in their order), every chain's point and segment
-// state, the relaxation's state (RunState: step, stage step, time, step size, kinetic damping,
-// energy budget), the stage, and the scene's own state (Scene::checkpoint_write). A checkpoint is
-// written under a .tmp name and renamed when complete, so none is ever half-written.
+// state, the run's progress (RunState: step, stage step, time, step size), the solver's own
+// state (EquilibriumSolver::checkpoint_write: relaxation's kinetic damping and energy budget), the
+// stage, and the scene's own state (Scene::checkpoint_write). A checkpoint is written under a .tmp
+// name and renamed when complete, so none is ever half-written.
 //
 // -restart FILE: the run is set up from the options as usual (the same options files), then its
 // state is replaced by the checkpoint's, and the stage loop continues from there. The restarted
@@ -36,5 +37,13 @@ PetscErrorCode CheckpointReadArray(PetscViewer v, const char *name, std::vector<
 // ... and one number (an attribute of the group).
 PetscErrorCode CheckpointWriteReal(PetscViewer v, const char *name, double x);
 PetscErrorCode CheckpointReadReal(PetscViewer v, const char *name, double *x);
+PetscErrorCode CheckpointWriteInt(PetscViewer v, const char *name, PetscInt x);
+PetscErrorCode CheckpointReadInt(PetscViewer v, const char *name, PetscInt *x);
+// For EquilibriumSolver::checkpoint_write / checkpoint_read: each rank's share of a sum (one
+// dataset of the current group, one entry per rank), and back: on the rank count that wrote it
+// each rank's own share, on another the whole sum on rank 0. `ranks`: the writer's rank count.
+PetscErrorCode CheckpointWriteRankShare(MPI_Comm comm, PetscViewer v, const char *name, double x);
+PetscErrorCode CheckpointReadRankShare(MPI_Comm comm, PetscViewer v, const char *name,
+                                       const std::string &file, PetscInt ranks, double *x);
 
 } // namespace pmpm

@@ -1,5 +1,6 @@
 // Everything one run holds: settings from the options database, the grid, the particles, the
-// materials, the loads and boundary conditions, and the state of the relaxation.
+// materials, the loads and boundary conditions, the run's progress, and its equilibrium solver
+// (solver.hpp, which holds the solver's own state).
 #pragma once
 #include "pmpm/affine.hpp"
 #include "pmpm/balance.hpp"
@@ -10,6 +11,7 @@
 #include "pmpm/interface.hpp"
 #include "pmpm/material.hpp"
 #include "pmpm/particles.hpp"
+#include "pmpm/solver.hpp"
 #include "pmpm/transfers.hpp"
 #include <memory>
 #include <string>
@@ -23,10 +25,6 @@ inline constexpr const char *DampingNames[] = {"none", "local",   "kinetic",  "b
 enum class InertiaScaling { None = 0, WaveSpeed = 1 };
 inline constexpr const char *InertiaScalingNames[] = {"none", "wave_speed", "InertiaScaling",
                                                       "INERTIA_", nullptr};
-// The equilibrium solver of every stage: explicit dynamic relaxation (relaxation.cpp) or Newton
-// load steps on PETSc SNES (newton.cpp).
-enum class Solver { Relaxation = 0, Newton = 1 };
-inline constexpr const char *SolverNames[] = {"relaxation", "newton", "Solver", "SOLVER_", nullptr};
 // -fbar_pressure: the internal force's pressure under F-bar, the particle's own or its group's
 enum class FbarPressure { Particle = 0, Cell = 1 };
 inline constexpr const char *FbarPressureNames[] = {"particle", "cell", "FbarPressure",
@@ -68,8 +66,8 @@ struct Settings {
   // checkpoint.hpp: write the state every K steps (0: never) and after every stage; resume
   PetscInt checkpoint_every = 0;
   bool checkpoint_stage_end = false;
-  std::string restart;                // -restart FILE (empty: a fresh run)
-  Solver solver = Solver::Relaxation; // -solver
+  std::string restart;               // -restart FILE (empty: a fresh run)
+  std::string solver = "relaxation"; // -solver: a name of the solver table (solver.hpp)
 };
 
 struct MaterialEntry {
@@ -88,7 +86,6 @@ inline constexpr const char *StageChangeNames[] = {
     "the loads", "a shrinkage", "a void (particles removed)", "loads or supports", nullptr};
 
 struct Simulation;
-struct NewtonSolver; // newton.cpp: the SNES, its DMDA and matrix (-solver newton only)
 
 // A scene: named geometry, materials, boundary conditions and results (pTatin-style table).
 class Scene {
@@ -148,32 +145,17 @@ struct RunState {
   double max_speed = 0;
   double ratio = 1e300; // unbalanced-force ratio
   double kinetic = 0;   // particle kinetic energy
-  double kinetic_prev = 0;
   bool converged = false;
   double wall_seconds = 0;  // all stages
   double stage_seconds = 0; // the current stage
   PetscInt migrations = 0;
   double local_unbalanced = 0;              // this rank's largest nodal unbalanced force
   double local_unbalanced_at[DIM] = {0, 0}; // and its node
-  PetscInt kinetic_resets = 0;
-  // -damping fire: the mixing now, steps since the last restart, and the last step's global
-  // sum m v^2 and sum f^2 / m (the mixing's scale; not checkpointed: a resumed stage restarts them)
-  double fire_mix = 0, fire_mv2 = 0, fire_f2m = 0;
-  PetscInt fire_steps = 0;
-  bool stop_stage = false; // set by a scene's monitor: end the stage unconverged (a collapse)
-  // What Relax carries from one step of a stage to the next (a checkpoint saves it): the wave
-  // speed at the stage's start (the instability test's speed limit), the kinetic energy 100
-  // steps back (growth test), and the energy budget: kinetic + elastic energy at the stage's
-  // start, this rank's share of the loads' work since, and the round-off floor.
-  double c0 = 0;
-  double ke_window = -1;
-  double budget_e0 = 0, budget_w_local = 0, budget_floor = 0;
+  bool stop_stage = false;   // set by a scene's monitor: end the stage unconverged (a collapse)
   bool all_converged = true; // every stage so far converged
   // Stages that ended at their step cap out of equilibrium (not a collapse the scene asked for,
   // nor a -dynamic run, which has no equilibrium to reach): no verdict from such a run.
   std::vector<int> capped_stages;
-  // -solver newton (newton.cpp): load steps solved, nonlinear and linear iterations over the run
-  PetscInt load_steps = 0, newton_its = 0, linear_its = 0;
 };
 
 struct Simulation {
@@ -233,7 +215,9 @@ struct Simulation {
   // -restart: the stage loop resumes at `stage`, inside it (after run.stage_step steps) when
   // resume_in_stage, else at its start (the checkpoint was written after the previous stage)
   bool resume = false, resume_in_stage = false;
-  NewtonSolver *newton = nullptr; // -solver newton: created in setup, destroyed with the run
+  // -solver's object (solver.hpp): made with the settings, set up after the particles,
+  // destroyed with the run
+  std::unique_ptr<EquilibriumSolver> solver;
 };
 
 // Setup: options, scene, materials, grid, particles.

@@ -410,12 +410,14 @@ class CoverScene final : public Scene {
     // geostatic stage's paper faces would be a frictional interface in stage 0 (-help only lists)
     PetscBool help = PETSC_FALSE;
     PetscCall(PetscOptionsHasHelp(nullptr, &help));
-    PmpmCheckInput(help || !(sim.set.solver == Solver::Newton && geostatic_paper_ && !mem_.empty()),
-                   sim.comm, PETSC_ERR_SUP,
-                   "-solver newton needs the membranes bonded in every stage, and "
+    const bool friction = sim.solver->supports(SolverFeature::FrictionalFaces);
+    PmpmCheckInput(help || friction || !(geostatic_paper_ && !mem_.empty()), sim.comm,
+                   PETSC_ERR_SUP,
+                   "-solver %s needs the membranes bonded in every stage, and "
                    "-cover_geostatic_paper (on by default) runs stage 0 with paper faces: add "
                    "-cover_geostatic_paper false (with -chain_<name>_interface bonded), or use "
-                   "-solver relaxation");
+                   "-solver relaxation",
+                   sim.set.solver.c_str());
     PmpmCheckInput(sim.shrink.taper >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-cover_shrink_taper must be >= 0");
     PmpmCheckInput(sim.shrink.grade_bottom >= 0 && sim.shrink.grade_top >= 0, sim.comm,

@@ -1,0 +1,64 @@
+// The equilibrium solver of every stage (the stage loop, stages.cpp, calls it once per stage):
+// an abstract interface and the table of its implementations (src/solvers/registry.cpp), from
+// which -solver's help, its allowed values and docs/options.md come. Explicit dynamic relaxation
+// (relaxation.cpp) and Newton load steps on PETSc SNES (newton.cpp) are the two entries; each
+// holds its own state (relaxation's damping and energy budget, Newton's SNES and counters).
+#pragma once
+#include <petscviewer.h>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pmpm {
+
+struct Simulation;
+
+// What the rest of the code may ask of a solver instead of comparing names.
+enum class SolverFeature {
+  FrictionalFaces = 0, // chains with slipping or separating faces, frictional interfaces
+};
+
+class EquilibriumSolver {
+public:
+  virtual ~EquilibriumSolver() = default;
+  virtual const char *name() const = 0;
+  // Read the solver's options and refuse, with a one-line error, what it cannot solve; under
+  // -help only list its options. Called once the scene, materials and particles are set up.
+  // Collective.
+  virtual PetscErrorCode setup(Simulation &sim) = 0;
+  // Equilibrium of the current stage (Simulation::stage), or its step cap; sets RunState's
+  // converged, ratio, stage_step and stage_seconds and honours Simulation::resume. Collective.
+  virtual PetscErrorCode solve_stage(Simulation &sim) = 0;
+  // The solver's members of summary.json ("key": value,\n  each), "" for none.
+  virtual std::string report() const { return ""; }
+  // Free what setup created. Collective.
+  virtual PetscErrorCode destroy() { return 0; }
+  virtual bool supports(SolverFeature) const = 0;
+  // An option the solver reads after setup (the unused-option check, main.cpp, skips it).
+  virtual bool reads_later(const char * /*option without its dash*/) const { return false; }
+  // Its state in a checkpoint's group `group` (checkpoint.cpp), and back; `ranks`: the rank
+  // count that wrote it. Collective.
+  virtual PetscErrorCode checkpoint_write(Simulation &, PetscViewer, const char * /*group*/) {
+    return 0;
+  }
+  virtual PetscErrorCode checkpoint_read(Simulation &, PetscViewer, const char * /*group*/,
+                                         const std::string & /*file*/, PetscInt /*ranks*/) {
+    return 0;
+  }
+};
+
+// The solver table: one entry per solver, in -help's order (the first is the default).
+struct SolverEntry {
+  const char *name;                             // -solver's value
+  std::unique_ptr<EquilibriumSolver> (*make)(); // the factory
+  const char *description;                      // -solver's help, docs/options.md
+};
+const std::vector<SolverEntry> &Solvers();
+// -solver's help: "Equilibrium solver: NAME (DESCRIPTION), ... or NAME (DESCRIPTION)".
+std::string SolverHelp();
+// The names in PETSc's enum layout (names, type name, prefix, null) for PmpmOptionsEnum.
+const char *const *SolverEnumNames();
+// The solver of that name, or null.
+std::unique_ptr<EquilibriumSolver> make_solver(const std::string &name);
+
+} // namespace pmpm

@@ -1,0 +1,121 @@
+// The colour interface (-interface_type other than bonded, without chains; interface.hpp) in the
+// explicit step: body 1 (colour 1) has its own nodal field on a second grid, whose velocities
+// the friction-limited interface update sets where the bodies meet; G2P reads both fields.
+#include "pmpm/interface.hpp"
+#include "pmpm/shape_cpgimp.hpp"
+#include "pmpm/step_hooks.hpp"
+
+namespace pmpm {
+
+namespace {
+bool Active(const Simulation &sim, const Load &) {
+  return sim.iface_grid.active;
+}
+
+template <class Shape> void BodyToGrid(StepState &S, const GridView &G) {
+  Simulation &sim = S.sim;
+  const PetscInt nb = static_cast<PetscInt>(sim.iface_idx.size());
+  p2g<Shape>(S.P, S.load, G, sim.iface_idx.data(), nb, S.pshift);
+  if (sim.iface.normals == InterfaceNormals::Cells)
+    p2g_cell_colour(S.P, G); // all particles
+  else
+    p2g_colour_gradient<Shape>(S.P, sim.iface_idx.data(), nb, G); // in FEXT slots
+}
+
+// 1b. Body 1's own mass, momentum, force, and its colour gradient (the normals).
+PetscErrorCode ParticlesToGrid(StepState &S) {
+  Grid &gb = S.sim.iface_grid.body;
+  GridView G;
+  PetscFunctionBeginUser;
+  PmpmLogEventScope(step_events.iface);
+  PetscCall(GridGetLocal(gb, true, G));
+  switch (S.sim.set.shape) {
+  case ShapeKind::Linear:
+    BodyToGrid<LinearShape>(S, G);
+    break;
+  case ShapeKind::UGIMP:
+    BodyToGrid<UGIMPShape>(S, G);
+    break;
+  case ShapeKind::CPGIMP:
+    BodyToGrid<CPGIMPShape>(S, G);
+    break;
+  }
+  PetscCall(GridRestoreLocal(gb, G));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GhostAdd(StepState &S) {
+  PetscFunctionBeginUser;
+  PetscCall(GridLocalToGlobalAdd(S.sim.iface_grid.body));
+  PetscFunctionReturn(0);
+}
+
+// 2b. The paper's normals: central differences of the cell-average colour need the
+//     neighbouring cells' sums, one more ghost exchange of the body grid.
+PetscErrorCode CellNormals(StepState &S) {
+  Grid &gb = S.sim.iface_grid.body;
+  GridView C, B;
+  PetscFunctionBeginUser;
+  if (S.sim.iface.normals != InterfaceNormals::Cells) PetscFunctionReturn(0);
+  PmpmLogEventScope(step_events.iface);
+  PetscCall(GridGlobalToLocal(gb));
+  PetscCall(GridGetLocal(gb, false, C));
+  PetscCall(GridGetGlobal(gb, B));
+  cell_colour_normals(C, B);
+  PetscCall(GridRestoreGlobal(gb, B));
+  PetscCall(GridRestoreLocal(gb, C));
+  PetscFunctionReturn(0);
+}
+
+// 3b. Friction-limited velocities of body 1 and body 2 where they meet.
+PetscErrorCode Update(StepState &S) {
+  Grid &gb = S.sim.iface_grid.body;
+  GridView B;
+  PetscFunctionBeginUser;
+  PmpmLogEventScope(step_events.iface);
+  InterfaceParams ip = S.sim.iface;
+  ip.dt = S.dt;
+  ip.damping_alpha = S.gp.damping_alpha;
+  PetscCall(GridGetGlobal(gb, B));
+  interface_update(S.G, B, ip, S.rep.iface);
+  PetscCall(GridRestoreGlobal(gb, B));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode GhostScatter(StepState &S) {
+  PetscFunctionBeginUser;
+  PetscCall(GridGlobalToLocal(S.sim.iface_grid.body));
+  PetscFunctionReturn(0);
+}
+
+// 5. G2P reads body 1's velocities for its particles.
+PetscErrorCode BodyView(StepState &S) {
+  PetscFunctionBeginUser;
+  PetscCall(GridGetLocal(S.sim.iface_grid.body, false, S.body));
+  S.G1 = &S.body;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BodyViewEnd(StepState &S) {
+  PetscFunctionBeginUser;
+  PetscCall(GridRestoreLocal(S.sim.iface_grid.body, S.body));
+  S.G1 = nullptr;
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+extern const StepHook interface_hook = [] {
+  StepHook h{};
+  h.name = "interface";
+  h.active = Active;
+  h.p2g = ParticlesToGrid;
+  h.ghost_add = GhostAdd;
+  h.after_ghost_add = CellNormals;
+  h.grid_update = Update;
+  h.ghost_scatter = GhostScatter;
+  h.before_g2p = BodyView;
+  h.after_g2p = BodyViewEnd;
+  return h;
+}();
+
+} // namespace pmpm

@@ -1,0 +1,33 @@
+// An imposed eigenstrain in the explicit step (a stage's shrinkage of degrading waste,
+// degradation.hpp): this step's increment per particle, and its power, which the stress update
+// subtracts from the strain increment.
+#include "pmpm/degradation.hpp"
+#include "pmpm/step_hooks.hpp"
+
+namespace pmpm {
+
+namespace {
+bool Active(const Simulation &, const Load &load) {
+  return load.shrink != 0;
+}
+
+// 6. Before the materials' update, in its event.
+PetscErrorCode Increment(StepState &S) {
+  Simulation &sim = S.sim;
+  PetscFunctionBeginUser;
+  S.rep.eigen_power = shrinkage_increment(S.P, sim.shrink, S.load.shrink, sim.eigen);
+  S.eigen = sim.eigen.data();
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+extern const StepHook eigenstrain_hook = [] {
+  StepHook h{};
+  h.name = "eigenstrain";
+  h.active = Active;
+  h.reads_gradient = true;
+  h.stress = Increment;
+  return h;
+}();
+
+} // namespace pmpm
