@@ -182,18 +182,19 @@ class CoverScene final : public Scene {
     return d > 0 ? static_cast<PetscInt>(std::ceil(d / dxp_ - 1e-9)) : 0;
   }
 
-  PetscErrorCode ReadOptions(Simulation &sim) {
-    std::vector<std::string> layer_names, mem_names;
-    PetscInt nsurf = 2 * kMaxList, nvoid = kMaxList;
-    PetscBool surf_set = PETSC_FALSE;
-    std::vector<double> surf(2 * kMaxList), vw(kMaxList);
+  // The cover's own options block, read into raw lists (checked by ReadOptions).
+  struct RawCoverOptions {
+    PetscInt nsurf = 2 * kMaxList, nvoid = kMaxList, nz = 2, ng = 2, nl = kMaxList, nm = kMaxList;
+    PetscBool surf_set = PETSC_FALSE, vw_set = PETSC_FALSE, zx_set = PETSC_FALSE,
+              gr_set = PETSC_FALSE, l_set = PETSC_FALSE, m_set = PETSC_FALSE;
+    std::vector<double> surf = std::vector<double>(2 * kMaxList),
+                        vw = std::vector<double>(kMaxList);
     double zx[2] = {0, 0}, gr[2] = {1, 1};
-    PetscInt nz = 2, ng = 2, nl = kMaxList, nm = kMaxList;
-    PetscBool vw_set = PETSC_FALSE, zx_set = PETSC_FALSE, gr_set = PETSC_FALSE, l_set = PETSC_FALSE,
-              m_set = PETSC_FALSE;
     char *lnames[kMaxList], *mnames[kMaxList], wbuf[64];
+  };
+  PetscErrorCode ReadCoverBlock(Simulation &sim, RawCoverOptions &raw) {
     PetscFunctionBeginUser;
-    PetscCall(PetscStrncpy(wbuf, waste_mat_.c_str(), sizeof(wbuf)));
+    PetscCall(PetscStrncpy(raw.wbuf, waste_mat_.c_str(), sizeof(raw.wbuf)));
     PetscOptionsBegin(sim.comm, "cover_", "Field-scale landfill cover (docs/cover.md)", nullptr);
     PetscCall(PmpmOptionsReal("-width", "Width of the model W (m)", nullptr, W_, &W_, nullptr));
     PetscCall(PmpmOptionsReal("-waste_height",
@@ -213,14 +214,14 @@ class CoverScene final : public Scene {
     PetscCall(PmpmOptionsRealArray("-surface",
                                    "Waste surface as a polyline x0,y0,x1,y1,... (m, x "
                                    "increasing from 0 to W; overrides the deck and slope)",
-                                   nullptr, surf.data(), &nsurf, &surf_set));
+                                   nullptr, raw.surf.data(), &raw.nsurf, &raw.surf_set));
     PetscCall(PetscOptionsStringArray("-layers", "Cover layers from the top down (names)", nullptr,
-                                      lnames, &nl, &l_set));
+                                      raw.lnames, &raw.nl, &raw.l_set));
     PetscCall(PetscOptionsString("-waste_material", "Material of the waste (-mat_<name>_*)",
-                                 nullptr, wbuf, wbuf, sizeof(wbuf), nullptr));
+                                 nullptr, raw.wbuf, raw.wbuf, sizeof(raw.wbuf), nullptr));
     PetscCall(PetscOptionsStringArray(
         "-membranes", "Geomembranes as chains (names; each -cover_membrane_<name>_under)", nullptr,
-        mnames, &nm, &m_set));
+        raw.mnames, &raw.nm, &raw.m_set));
     PetscCall(PmpmOptionsReal("-shrink_total",
                               "Waste degradation: total volumetric shrinkage e_v of the zone "
                               "(log strain, 0..0.6; 0: none)",
@@ -237,7 +238,7 @@ class CoverScene final : public Scene {
                               nullptr, ShrinkModeNames, (PetscEnum)sim.shrink.mode,
                               (PetscEnum *)&sim.shrink.mode, nullptr));
     PetscCall(PmpmOptionsRealArray("-shrink_x", "Degrading zone x_lo,x_hi (m; default all)",
-                                   nullptr, zx, &nz, &zx_set));
+                                   nullptr, raw.zx, &raw.nz, &raw.zx_set));
     PetscCall(PmpmOptionsReal("-shrink_taper",
                               "Shrinkage falls linearly to 0 over this distance outside the "
                               "zone (m)",
@@ -245,12 +246,12 @@ class CoverScene final : public Scene {
     PetscCall(PmpmOptionsRealArray("-shrink_grade",
                                    "Shrinkage factors at the waste base and top, bottom,top "
                                    "(linear with height; 1,1: uniform)",
-                                   nullptr, gr, &ng, &gr_set));
+                                   nullptr, raw.gr, &raw.ng, &raw.gr_set));
     PetscCall(PmpmOptionsReal("-void_x", "Void centre x (m)", nullptr, void_x_, &void_x_, nullptr));
     PetscCall(PmpmOptionsRealArray("-void_widths",
                                    "Void width at each void stage (m, non-decreasing; none: no "
                                    "void)",
-                                   nullptr, vw.data(), &nvoid, &vw_set));
+                                   nullptr, raw.vw.data(), &raw.nvoid, &raw.vw_set));
     PetscCall(
         PmpmOptionsReal("-void_height", "Void height (m)", nullptr, void_h_, &void_h_, nullptr));
     PetscCall(PmpmOptionsReal("-void_depth",
@@ -272,28 +273,42 @@ class CoverScene final : public Scene {
         "let the soft waste run ahead of the cover by 12 % of a cell",
         nullptr, geostatic_paper_, &geostatic_paper_, nullptr));
     PetscOptionsEnd();
-    waste_mat_ = wbuf;
-    if (l_set) TakeNames(lnames, nl, layer_names);
-    if (m_set) TakeNames(mnames, nm, mem_names);
-    void_w_.assign(vw.begin(), vw.begin() + (vw_set ? nvoid : 0));
-    if (surf_set) {
-      PmpmCheckInput(nsurf >= 4 && nsurf % 2 == 0, sim.comm, PETSC_ERR_USER_INPUT,
-                     "-cover_surface needs pairs x,y (at least 2 points), got %d numbers",
-                     (int)nsurf);
-      surf_.assign(surf.begin(), surf.begin() + nsurf);
-    }
-    if (zx_set) {
-      PmpmCheckInput(nz == 2 && zx[1] > zx[0], sim.comm, PETSC_ERR_USER_INPUT,
-                     "-cover_shrink_x needs x_lo,x_hi with x_lo < x_hi");
-      sim.shrink.x_lo = zx[0];
-      sim.shrink.x_hi = zx[1];
-    }
-    PmpmCheckInput(!gr_set || ng == 2, sim.comm, PETSC_ERR_USER_INPUT,
-                   "-cover_shrink_grade needs bottom,top");
-    sim.shrink.grade_bottom = gr[0];
-    sim.shrink.grade_top = gr[1];
+    PetscFunctionReturn(0);
+  }
 
-    // layers and membranes: their own prefixed options
+  PetscErrorCode ReadOptions(Simulation &sim) {
+    std::vector<std::string> layer_names, mem_names;
+    RawCoverOptions raw;
+    PetscFunctionBeginUser;
+    PetscCall(ReadCoverBlock(sim, raw));
+    waste_mat_ = raw.wbuf;
+    if (raw.l_set) TakeNames(raw.lnames, raw.nl, layer_names);
+    if (raw.m_set) TakeNames(raw.mnames, raw.nm, mem_names);
+    void_w_.assign(raw.vw.begin(), raw.vw.begin() + (raw.vw_set ? raw.nvoid : 0));
+    if (raw.surf_set) {
+      PmpmCheckInput(raw.nsurf >= 4 && raw.nsurf % 2 == 0, sim.comm, PETSC_ERR_USER_INPUT,
+                     "-cover_surface needs pairs x,y (at least 2 points), got %d numbers",
+                     (int)raw.nsurf);
+      surf_.assign(raw.surf.begin(), raw.surf.begin() + raw.nsurf);
+    }
+    if (raw.zx_set) {
+      PmpmCheckInput(raw.nz == 2 && raw.zx[1] > raw.zx[0], sim.comm, PETSC_ERR_USER_INPUT,
+                     "-cover_shrink_x needs x_lo,x_hi with x_lo < x_hi");
+      sim.shrink.x_lo = raw.zx[0];
+      sim.shrink.x_hi = raw.zx[1];
+    }
+    PmpmCheckInput(!raw.gr_set || raw.ng == 2, sim.comm, PETSC_ERR_USER_INPUT,
+                   "-cover_shrink_grade needs bottom,top");
+    sim.shrink.grade_bottom = raw.gr[0];
+    sim.shrink.grade_top = raw.gr[1];
+    PetscCall(ReadLayers(sim, layer_names));
+    PetscCall(ReadMembranes(sim, mem_names));
+    PetscFunctionReturn(0);
+  }
+
+  // Each layer's own prefixed options (-cover_layer_<name>_*), bottom-up into layers_.
+  PetscErrorCode ReadLayers(Simulation &sim, const std::vector<std::string> &layer_names) {
+    PetscFunctionBeginUser;
     PmpmCheckInput(!layer_names.empty(), sim.comm, PETSC_ERR_USER_INPUT,
                    "-cover_layers needs at least one layer");
     layers_.clear();
@@ -323,6 +338,12 @@ class CoverScene final : public Scene {
       layers_.push_back(L);
       layer_mats_.push_back(mat);
     }
+    PetscFunctionReturn(0);
+  }
+
+  // Each membrane's own prefixed options (-cover_membrane_<name>_*), sorted by layer.
+  PetscErrorCode ReadMembranes(Simulation &sim, const std::vector<std::string> &mem_names) {
+    PetscFunctionBeginUser;
     mem_.clear();
     for (const std::string &nm : mem_names) {
       Membrane M;

@@ -156,6 +156,208 @@ class TrenchScene final : public Scene {
     return best;
   }
 
+  // What the sheet does over the trench: sag, the edges' crossings, pull-in, strains.
+  struct Span {
+    double sag_abs = 0, sag_chord = 0, pull[2] = {0, 0}, u_edge[2] = {0, 0};
+    int kx[3] = {0, 0, 0}, ie[2] = {0, 0}, kpk = -1, kall = 0;
+    double rx[3] = {0, 0, 0};
+    double mat0 = 0, eps_mean_span = 0, eps_geom = 0, xpk = 0;
+  };
+  // The pressure on the sheet over the trench, from p_top / p_bot and from its equilibrium.
+  struct SpanPressure {
+    double all = 0, bottom = 0, top_inner = 0, eq_inner = 0, eq_edges = 0;
+  };
+  // The anchorage on one side, from the edge outward.
+  struct Anchorage {
+    double T_edge = 0, eps_edge = 0, len5 = 0, len_eq = 0, m = 0, p_top = 0, slip_bot = 0,
+           slip_top = 0, u_end = 0;
+  };
+
+  // point values from the adjacent segments
+  static double PointValue(const Sheet &q, const std::vector<double> &seg, int i) {
+    const int a = std::max(i - 1, 0), b = std::min(i, q.n - 2);
+    return 0.5 * (seg[a] + seg[b]);
+  }
+  // a point field at initial abscissa s (linear interpolation between points)
+  static double At0(const Sheet &q, double s, const std::function<double(int)> &f) {
+    int k = 0;
+    while (k + 2 < q.n && q.x0[k + 1] < s) ++k;
+    const double r = (s - q.x0[k]) / (q.x0[k + 1] - q.x0[k]);
+    return (1 - r) * f(k) + r * f(k + 1);
+  }
+
+  Span MeasureSpan(const Sheet &q) const {
+    Span sp;
+    const int n = q.n;
+    // sag: absolute at mid-trench, and relative to the chord between the current sheet points
+    // above the trench edges
+    sp.sag_abs = -At0(q, xc_, [&](int i) { return q.y[i] - Hb_; });
+    const double xs[3] = {xe_[0], xc_, xe_[1]};
+    double ycross[3], X0x[3];
+    for (int e = 0; e < 3; ++e) {
+      Cross(q, xs[e], sp.kx[e], sp.rx[e]);
+      ycross[e] = (1 - sp.rx[e]) * q.y[sp.kx[e]] + sp.rx[e] * q.y[sp.kx[e] + 1];
+      X0x[e] = (1 - sp.rx[e]) * q.x0[sp.kx[e]] + sp.rx[e] * q.x0[sp.kx[e] + 1];
+    }
+    sp.sag_chord = 0.5 * (ycross[0] + ycross[2]) - ycross[1];
+    // pull-in: the material now above each edge came from X0x; drawn-in length per side
+    sp.pull[0] = xe_[0] - X0x[0];
+    sp.pull[1] = X0x[2] - xe_[1];
+    // the material points at the edges: their horizontal displacement toward the trench
+    sp.ie[0] = Index0(q, xe_[0]);
+    sp.ie[1] = Index0(q, xe_[1]);
+    sp.u_edge[0] = q.x[sp.ie[0]] - q.x0[sp.ie[0]];
+    sp.u_edge[1] = -(q.x[sp.ie[1]] - q.x0[sp.ie[1]]);
+    // arc length over the void and the material's mean strain there
+    double arc = 0;
+    for (int k = sp.kx[0]; k <= sp.kx[2]; ++k) {
+      const double a = k == sp.kx[0] ? sp.rx[0] : 0.0, b = k == sp.kx[2] ? sp.rx[2] : 1.0;
+      if (b <= a) continue;
+      arc += (b - a) * std::hypot(q.x[k + 1] - q.x[k], q.y[k + 1] - q.y[k]);
+      sp.mat0 += (b - a) * q.l0[k];
+    }
+    sp.eps_mean_span = arc / sp.mat0 - 1;
+    sp.eps_geom = arc / B_ - 1;
+    // peak strain over the span (segments whose initial midpoint is over the trench) and over
+    // the whole sheet
+    for (int k = 0; k + 1 < n; ++k) {
+      const double xm = 0.5 * (q.x0[k] + q.x0[k + 1]);
+      if (xm > xe_[0] && xm < xe_[1] && (sp.kpk < 0 || q.eps[k] > q.eps[sp.kpk])) sp.kpk = k;
+      if (q.eps[k] > q.eps[sp.kall]) sp.kall = k;
+    }
+    sp.xpk = sp.kpk >= 0 ? 0.5 * (q.x0[sp.kpk] + q.x0[sp.kpk + 1]) : 0.0;
+    return sp;
+  }
+
+  // The pressure on the sheet over the void: the chain's p_top (length-weighted) over the points
+  // now above the trench, and over its central 80 % (clear of the corners, where the sheet bends
+  // over the edges and the cover presses it onto them); and from the sheet's equilibrium.
+  SpanPressure MeasurePressure(const Sheet &q, const Span &sp, double line_weight) const {
+    SpanPressure sp_p;
+    const double a_in = 0.4 * B_;
+    double pw[2] = {0, 0}, pwi[2] = {0, 0}, pb[2] = {0, 0};
+    for (int i = 0; i < q.n; ++i) {
+      if (q.x[i] <= xe_[0] || q.x[i] >= xe_[1]) continue;
+      pw[0] += q.p_top[i] * q.length[i];
+      pw[1] += q.length[i];
+      pb[0] += q.p_bot[i] * q.length[i];
+      pb[1] += q.length[i];
+      if (std::fabs(q.x[i] - xc_) < a_in) {
+        pwi[0] += q.p_top[i] * q.length[i];
+        pwi[1] += q.length[i];
+      }
+    }
+    sp_p.all = pw[1] > 0 ? pw[0] / pw[1] : 0;
+    sp_p.bottom = pb[1] > 0 ? pb[0] / pb[1] : 0;
+    sp_p.top_inner = pwi[1] > 0 ? pwi[0] / pwi[1] : 0;
+    // the sheet's equilibrium over the same central 80 %: the vertical components of the tension
+    // where the sheet crosses x = xc -+ 0.4 B carry the pressure and the sheet's weight
+    auto vertical = [&](int k) {
+      const double dx = q.x[k + 1] - q.x[k], dy = q.y[k + 1] - q.y[k];
+      return q.T[k] * std::fabs(dy) / std::hypot(dx, dy);
+    };
+    double V = 0, L0in = 0;
+    int kin[2];
+    double rin[2];
+    for (int e = 0; e < 2; ++e) {
+      Cross(q, xc_ + (e == 0 ? -a_in : a_in), kin[e], rin[e]);
+      V += vertical(kin[e]);
+    }
+    for (int k = kin[0]; k <= kin[1]; ++k) {
+      const double a = k == kin[0] ? rin[0] : 0.0, b = k == kin[1] ? rin[1] : 1.0;
+      if (b > a) L0in += (b - a) * q.l0[k];
+    }
+    sp_p.eq_inner = (V - line_weight * L0in) / (2 * a_in);
+    // ... and over the whole span (the crossings of the edges; includes what the sheet hands to
+    // the corners where it bends over them)
+    double Ve = 0;
+    for (int e : {0, 2}) Ve += vertical(sp.kx[e]);
+    sp_p.eq_edges = (Ve - line_weight * sp.mat0) / B_;
+    return sp_p;
+  }
+
+  // The anchorage on side e (0 left, 1 right), from the edge's point i0 outward.
+  static Anchorage MeasureAnchorage(const Sheet &q, int e, int i0) {
+    const int n = q.n, step = e == 0 ? -1 : 1;
+    Anchorage a;
+    a.T_edge = PointValue(q, q.T, i0);
+    a.eps_edge = PointValue(q, q.eps, i0);
+    double area = 0;
+    bool found = false;
+    for (int i = i0; i + step >= 0 && i + step < n; i += step) {
+      const int k = e == 0 ? i - 1 : i; // the segment between i and i + step
+      area += std::fmax(q.T[k], 0.0) * q.l0[k];
+      if (!found && q.T[k] <= 0.05 * a.T_edge) {
+        a.len5 = std::fabs(0.5 * (q.x0[i] + q.x0[i + step]) - q.x0[i0]);
+        found = true;
+      }
+    }
+    if (!found) a.len5 = std::fabs(q.x0[e == 0 ? 0 : n - 1] - q.x0[i0]);
+    a.len_eq = a.T_edge > 0 ? 2 * area / a.T_edge : 0;
+    a.m = a.len_eq > 0 ? a.T_edge / a.len_eq : 0;
+    double ps = 0, ls = 0;
+    for (int i = 0; i < n; ++i) {
+      const double d = e == 0 ? q.x0[i0] - q.x0[i] : q.x0[i] - q.x0[i0];
+      if (d > 0 && d <= a.len_eq) {
+        ps += q.p_top[i] * q.length[i];
+        ls += q.length[i];
+      }
+    }
+    a.p_top = ls > 0 ? ps / ls : 0;
+    a.slip_bot = std::fabs(q.slip_bot[i0]);
+    a.slip_top = std::fabs(q.slip_top[i0]);
+    a.u_end = e == 0 ? q.x[0] - q.x0[0] : -(q.x[n - 1] - q.x0[n - 1]); // toward the trench
+    return a;
+  }
+
+  // The closed forms beside the simulation: Terzaghi's bracket and Giroud's sheet, plain and
+  // with the anchorage's pull-in (the header's list (a)-(g)).
+  std::string ClosedForms(double gamma, double J, double m_cf, double m_sim, double p_arc,
+                          double p_top, double pull_sim) const {
+    const double B = B_, sigma_n = gamma * H_;
+    const double rad = giroud::pi / 180, tphi = std::tan(phi_ * rad), sphi = std::sin(phi_ * rad);
+    const double Ka = (1 - sphi) / (1 + sphi);
+    auto terzaghi = [&](double ktan) { // docs/method.md, section 6.4, c = 0, q = 0
+      return 0.5 * gamma * B / ktan * (-std::expm1(-2 * ktan * H_ / B));
+    };
+    const double p_K1 = terzaghi(tphi), p_Ka = terzaghi(Ka * tphi), p_025 = terzaghi(0.25);
+    auto giroud_sc = [&](double p) -> std::string {
+      try { // T = J eps with E t = J; the pressure enters as giroud's surcharge (no arching)
+        const auto g = giroud::self_consistent(0.0, B, 0.0, p, t_, J / t_);
+        return Obj({{"pressure", p}, {"sag", g.sag}, {"strain", g.strain}, {"tension", g.tension}});
+      } catch (const std::exception &) {
+        return "null";
+      }
+    };
+    auto anchored = [&](double p, const std::function<double(double)> &pf) -> std::string {
+      const ArcAnchored a = GiroudAnchored(p, B, J, pf);
+      if (a.sag < 0) return "null";
+      return Obj({{"pressure", p},
+                  {"sag", a.sag},
+                  {"strain", a.strain},
+                  {"tension", a.tension},
+                  {"pull_in_total", a.pull}});
+    };
+    auto pull_cf = [&](double m) { return [m, J](double T) { return 2 * T * T / (2 * m * J); }; };
+    const char *sep = ",\n    ";
+    return std::string("\"terzaghi\": ") +
+           Obj({{"K1", p_K1},
+                {"Ka", p_Ka},
+                {"Ka_value", Ka},
+                {"ktan_025", p_025},
+                {"overburden", sigma_n}}) +
+           sep + "\"giroud\": {\"overburden\": " + giroud_sc(sigma_n) +
+           ",\n      \"simulated_pressure\": " + giroud_sc(p_arc) +
+           ",\n      \"pressure_top_inner\": " + giroud_sc(p_top) +
+           ",\n      \"giroud_arching\": " + giroud_sc(p_025) +
+           ",\n      \"anchored_simulated_pull_in\": " +
+           anchored(p_arc, [&](double) { return pull_sim; }) +
+           ",\n      \"anchored_closed_form\": " + anchored(p_arc, pull_cf(m_cf)) +
+           ",\n      \"anchored_mobilised_shear\": " + anchored(p_arc, pull_cf(m_sim)) +
+           ",\n      \"anchored_closed_form_overburden\": " + anchored(sigma_n, pull_cf(m_cf)) +
+           "}";
+  }
+
 public:
   PetscErrorCode setup(Simulation &sim) override {
     PetscFunctionBeginUser;
@@ -332,190 +534,32 @@ public:
     PetscFunctionBeginUser;
     const Chain &c = sim.chains[0];
     const Sheet q = FullSheet(c);
-    const int n = q.n;
-    // a point field at initial abscissa s (linear interpolation between points)
-    auto at0 = [&](double s, const std::function<double(int)> &f) {
-      int k = 0;
-      while (k + 2 < n && q.x0[k + 1] < s) ++k;
-      const double r = (s - q.x0[k]) / (q.x0[k + 1] - q.x0[k]);
-      return (1 - r) * f(k) + r * f(k + 1);
-    };
-    const double B = B_, J = c.law.J;
+    const double J = c.law.J;
     const double gamma = sim.mats[COVER].gamma, sigma_n = gamma * H_;
     const double mu_sum = c.top.mu + c.bottom.mu, m_cf = mu_sum * sigma_n;
-    auto uy = [&](int i) { return q.y[i] - Hb_; };
-    auto ux = [&](int i) { return q.x[i] - q.x0[i]; };
-    // point values from the adjacent segments
-    auto eps_pt = [&](int i) {
-      const int a = std::max(i - 1, 0), b = std::min(i, n - 2);
-      return 0.5 * (q.eps[a] + q.eps[b]);
-    };
-    auto T_pt = [&](int i) {
-      const int a = std::max(i - 1, 0), b = std::min(i, n - 2);
-      return 0.5 * (q.T[a] + q.T[b]);
-    };
-
-    // sag: absolute at mid-trench, and relative to the chord between the current sheet points
-    // above the trench edges
-    const double sag_abs = -at0(xc_, uy);
-    const double xs[3] = {xe_[0], xc_, xe_[1]};
-    int kx[3];
-    double rx[3], ycross[3], X0x[3];
-    for (int e = 0; e < 3; ++e) {
-      Cross(q, xs[e], kx[e], rx[e]);
-      ycross[e] = (1 - rx[e]) * q.y[kx[e]] + rx[e] * q.y[kx[e] + 1];
-      X0x[e] = (1 - rx[e]) * q.x0[kx[e]] + rx[e] * q.x0[kx[e] + 1];
-    }
-    const double sag_chord = 0.5 * (ycross[0] + ycross[2]) - ycross[1];
-    // pull-in: the material now above each edge came from X0x; drawn-in length per side
-    const double pull[2] = {xe_[0] - X0x[0], X0x[2] - xe_[1]};
-    // the material points at the edges: their horizontal displacement toward the trench
-    const int ie[2] = {Index0(q, xe_[0]), Index0(q, xe_[1])};
-    const double u_edge[2] = {ux(ie[0]), -ux(ie[1])};
-    // arc length over the void and the material's mean strain there
-    double arc = 0, mat0 = 0;
-    for (int k = kx[0]; k <= kx[2]; ++k) {
-      const double a = k == kx[0] ? rx[0] : 0.0, b = k == kx[2] ? rx[2] : 1.0;
-      if (b <= a) continue;
-      arc += (b - a) * std::hypot(q.x[k + 1] - q.x[k], q.y[k + 1] - q.y[k]);
-      mat0 += (b - a) * q.l0[k];
-    }
-    const double eps_mean_span = arc / mat0 - 1, eps_geom = arc / B - 1;
-    // peak strain over the span (segments whose initial midpoint is over the trench) and over
-    // the whole sheet
-    int kpk = -1, kall = 0;
-    for (int k = 0; k + 1 < n; ++k) {
-      const double xm = 0.5 * (q.x0[k] + q.x0[k + 1]);
-      if (xm > xe_[0] && xm < xe_[1] && (kpk < 0 || q.eps[k] > q.eps[kpk])) kpk = k;
-      if (q.eps[k] > q.eps[kall]) kall = k;
-    }
-    const double xpk = kpk >= 0 ? 0.5 * (q.x0[kpk] + q.x0[kpk + 1]) : 0.0;
-    const double eps_mid = at0(xc_, eps_pt), T_mid = at0(xc_, T_pt);
+    const Span sp = MeasureSpan(q);
+    const SpanPressure pr = MeasurePressure(q, sp, c.line_weight);
+    const Anchorage an[2] = {MeasureAnchorage(q, 0, sp.ie[0]), MeasureAnchorage(q, 1, sp.ie[1])};
+    const double eps_mid = At0(q, xc_, [&](int i) { return PointValue(q, q.eps, i); });
+    const double T_mid = At0(q, xc_, [&](int i) { return PointValue(q, q.T, i); });
     // the pressure of Giroud's arc: a uniform normal pressure p holds a circular sheet of radius
     // R under the tension T = p R; R from the chord B and the simulated chord sag
-    const double R_arc = (0.25 * B * B + sag_chord * sag_chord) / (2 * sag_chord);
+    const double R_arc = (0.25 * B_ * B_ + sp.sag_chord * sp.sag_chord) / (2 * sp.sag_chord);
     const double p_arc = T_mid / R_arc;
-    // pressure on the sheet over the void: the chain's p_top (length-weighted) over the points
-    // now above the trench, and over its central 80 % (clear of the corners, where the sheet
-    // bends over the edges and the cover presses it onto them)
-    const double a_in = 0.4 * B;
-    double pw[2] = {0, 0}, pwi[2] = {0, 0}, pb[2] = {0, 0};
-    for (int i = 0; i < n; ++i) {
-      if (q.x[i] <= xe_[0] || q.x[i] >= xe_[1]) continue;
-      pw[0] += q.p_top[i] * q.length[i];
-      pw[1] += q.length[i];
-      pb[0] += q.p_bot[i] * q.length[i];
-      pb[1] += q.length[i];
-      if (std::fabs(q.x[i] - xc_) < a_in) {
-        pwi[0] += q.p_top[i] * q.length[i];
-        pwi[1] += q.length[i];
-      }
-    }
-    const double p_all = pw[1] > 0 ? pw[0] / pw[1] : 0, p_bot = pb[1] > 0 ? pb[0] / pb[1] : 0;
-    const double p_top = pwi[1] > 0 ? pwi[0] / pwi[1] : 0;
-    // from the sheet's equilibrium over the same central 80 %: the vertical components of the
-    // tension where the sheet crosses x = xc -+ 0.4 B carry the pressure and the sheet's weight
-    double V = 0, L0in = 0;
-    {
-      int kin[2];
-      double rin[2];
-      for (int e = 0; e < 2; ++e) {
-        Cross(q, xc_ + (e == 0 ? -a_in : a_in), kin[e], rin[e]);
-        const int k = kin[e];
-        const double dx = q.x[k + 1] - q.x[k], dy = q.y[k + 1] - q.y[k];
-        V += q.T[k] * std::fabs(dy) / std::hypot(dx, dy);
-      }
-      for (int k = kin[0]; k <= kin[1]; ++k) {
-        const double a = k == kin[0] ? rin[0] : 0.0, b = k == kin[1] ? rin[1] : 1.0;
-        if (b > a) L0in += (b - a) * q.l0[k];
-      }
-    }
-    const double p_eq = (V - c.line_weight * L0in) / (2 * a_in);
-    // ... and over the whole span (the crossings of the edges; includes what the sheet hands to
-    // the corners where it bends over them)
-    double Ve = 0;
-    for (int e : {0, 2}) {
-      const int k = kx[e];
-      const double dx = q.x[k + 1] - q.x[k], dy = q.y[k + 1] - q.y[k];
-      Ve += q.T[k] * std::fabs(dy) / std::hypot(dx, dy);
-    }
-    const double p_eq_edges = (Ve - c.line_weight * mat0) / B;
-    // the anchorage on each side, from the edge outward
-    struct Anch {
-      double T_edge = 0, eps_edge = 0, len5 = 0, len_eq = 0, m = 0, p_top = 0, slip_bot = 0,
-             slip_top = 0, u_end = 0;
-    } an[2];
-    for (int e = 0; e < 2; ++e) {
-      const int i0 = ie[e], step = e == 0 ? -1 : 1;
-      Anch &a = an[e];
-      a.T_edge = T_pt(i0);
-      a.eps_edge = eps_pt(i0);
-      double area = 0;
-      bool found = false;
-      for (int i = i0; i + step >= 0 && i + step < n; i += step) {
-        const int k = e == 0 ? i - 1 : i; // the segment between i and i + step
-        area += std::fmax(q.T[k], 0.0) * q.l0[k];
-        if (!found && q.T[k] <= 0.05 * a.T_edge) {
-          a.len5 = std::fabs(0.5 * (q.x0[i] + q.x0[i + step]) - q.x0[i0]);
-          found = true;
-        }
-      }
-      if (!found) a.len5 = std::fabs(q.x0[e == 0 ? 0 : n - 1] - q.x0[i0]);
-      a.len_eq = a.T_edge > 0 ? 2 * area / a.T_edge : 0;
-      a.m = a.len_eq > 0 ? a.T_edge / a.len_eq : 0;
-      double ps = 0, ls = 0;
-      for (int i = 0; i < n; ++i) {
-        const double d = e == 0 ? q.x0[i0] - q.x0[i] : q.x0[i] - q.x0[i0];
-        if (d > 0 && d <= a.len_eq) {
-          ps += q.p_top[i] * q.length[i];
-          ls += q.length[i];
-        }
-      }
-      a.p_top = ls > 0 ? ps / ls : 0;
-      a.slip_bot = std::fabs(q.slip_bot[i0]);
-      a.slip_top = std::fabs(q.slip_top[i0]);
-      a.u_end = e == 0 ? ux(0) : -ux(n - 1); // toward the trench
-    }
     const double T_edge = 0.5 * (an[0].T_edge + an[1].T_edge);
     const double m_sim = 0.5 * (an[0].m + an[1].m);
+    const double pull_sim = sp.pull[0] + sp.pull[1];
     // the sheet's lowest point against the trench floor
     double ymin = 1e300;
-    for (int i = 0; i < n; ++i) ymin = std::fmin(ymin, q.y[i]);
+    for (int i = 0; i < q.n; ++i) ymin = std::fmin(ymin, q.y[i]);
     const double gap_floor = ymin - (Hb_ - D_);
 
-    // closed forms
-    const double rad = giroud::pi / 180, tphi = std::tan(phi_ * rad), sphi = std::sin(phi_ * rad);
-    const double Ka = (1 - sphi) / (1 + sphi);
-    auto terzaghi = [&](double ktan) { // docs/method.md, section 6.4, c = 0, q = 0
-      return 0.5 * gamma * B / ktan * (-std::expm1(-2 * ktan * H_ / B));
-    };
-    const double p_K1 = terzaghi(tphi), p_Ka = terzaghi(Ka * tphi), p_025 = terzaghi(0.25);
-    auto giroud_sc = [&](double p) -> std::string {
-      try { // T = J eps with E t = J; the pressure enters as giroud's surcharge (no arching)
-        const auto g = giroud::self_consistent(0.0, B, 0.0, p, t_, J / t_);
-        return Obj({{"pressure", p}, {"sag", g.sag}, {"strain", g.strain}, {"tension", g.tension}});
-      } catch (const std::exception &) {
-        return "null";
-      }
-    };
-    auto anchored = [&](double p, const std::function<double(double)> &pf) -> std::string {
-      const ArcAnchored a = GiroudAnchored(p, B, J, pf);
-      if (a.sag < 0) return "null";
-      return Obj({{"pressure", p},
-                  {"sag", a.sag},
-                  {"strain", a.strain},
-                  {"tension", a.tension},
-                  {"pull_in_total", a.pull}});
-    };
-    const double pull_sim = pull[0] + pull[1];
-    auto pull_cf = [&](double m) { return [m, J](double T) { return 2 * T * T / (2 * m * J); }; };
-
     auto side = [&](int e) {
-      const Anch &a = an[e];
+      const Anchorage &a = an[e];
       return Obj({{"tension_edge", a.T_edge},
                   {"strain_edge", a.eps_edge},
-                  {"pull_in", pull[e]},
-                  {"edge_displacement", u_edge[e]},
+                  {"pull_in", sp.pull[e]},
+                  {"edge_displacement", sp.u_edge[e]},
                   {"end_displacement", a.u_end},
                   {"length_5pct", a.len5},
                   {"length_equivalent", a.len_eq},
@@ -526,44 +570,45 @@ public:
                   {"x_a_closed_form", a.T_edge / m_cf},
                   {"u0_closed_form", a.T_edge * a.T_edge / (2 * m_cf * J)}});
     };
+    const double peak_span = sp.kpk >= 0 ? q.eps[sp.kpk] : 0.0;
+    const std::vector<std::pair<std::string, double>> values = {
+        {"trench_width", B_},
+        {"trench_depth", D_},
+        {"cover", H_},
+        {"axial_stiffness", J},
+        {"overburden", sigma_n},
+        {"mu_sum", mu_sum},
+        {"shear_closed_form", m_cf},
+        {"terzaghi_phi", phi_},
+        {"sag", sp.sag_abs},
+        {"sag_chord", sp.sag_chord},
+        {"strain_mid", eps_mid},
+        {"strain_mean_span", sp.eps_mean_span},
+        {"strain_geometric_span", sp.eps_geom},
+        {"peak_strain_span", peak_span},
+        {"peak_strain_span_x0", sp.xpk},
+        {"peak_strain_span_from_edge", std::fmin(sp.xpk - xe_[0], xe_[1] - sp.xpk)},
+        {"peak_strain", q.eps[sp.kall]},
+        {"peak_strain_x0", 0.5 * (q.x0[sp.kall] + q.x0[sp.kall + 1])},
+        {"strain_edge_left", an[0].eps_edge},
+        {"strain_edge_right", an[1].eps_edge},
+        {"tension_edge", T_edge},
+        {"tension_mid", T_mid},
+        {"pull_in_total", pull_sim},
+        {"shear_mobilised", m_sim},
+        {"pressure_arc", p_arc},
+        {"arc_radius", R_arc},
+        {"pressure_top_inner", pr.top_inner},
+        {"pressure_top_span", pr.all},
+        {"pressure_equilibrium_inner", pr.eq_inner},
+        {"pressure_equilibrium_edges", pr.eq_edges},
+        {"pressure_bottom_span", pr.bottom},
+        {"gap_to_floor", gap_floor}};
     const char *sep = ",\n    ";
-    json = json_kv("trench_width", B) + sep + json_kv("trench_depth", D_) + sep +
-           json_kv("cover", H_) + sep + json_kv("axial_stiffness", J) + sep +
-           json_kv("overburden", sigma_n) + sep + json_kv("mu_sum", mu_sum) + sep +
-           json_kv("shear_closed_form", m_cf) + sep + json_kv("terzaghi_phi", phi_) + sep +
-           json_kv("sag", sag_abs) + sep + json_kv("sag_chord", sag_chord) + sep +
-           json_kv("strain_mid", eps_mid) + sep + json_kv("strain_mean_span", eps_mean_span) + sep +
-           json_kv("strain_geometric_span", eps_geom) + sep +
-           json_kv("peak_strain_span", kpk >= 0 ? q.eps[kpk] : 0.0) + sep +
-           json_kv("peak_strain_span_x0", xpk) + sep +
-           json_kv("peak_strain_span_from_edge", std::fmin(xpk - xe_[0], xe_[1] - xpk)) + sep +
-           json_kv("peak_strain", q.eps[kall]) + sep +
-           json_kv("peak_strain_x0", 0.5 * (q.x0[kall] + q.x0[kall + 1])) + sep +
-           json_kv("strain_edge_left", an[0].eps_edge) + sep +
-           json_kv("strain_edge_right", an[1].eps_edge) + sep + json_kv("tension_edge", T_edge) +
-           sep + json_kv("tension_mid", T_mid) + sep + json_kv("pull_in_total", pull_sim) + sep +
-           json_kv("shear_mobilised", m_sim) + sep + json_kv("pressure_arc", p_arc) + sep +
-           json_kv("arc_radius", R_arc) + sep + json_kv("pressure_top_inner", p_top) + sep +
-           json_kv("pressure_top_span", p_all) + sep + json_kv("pressure_equilibrium_inner", p_eq) +
-           sep + json_kv("pressure_equilibrium_edges", p_eq_edges) + sep +
-           json_kv("pressure_bottom_span", p_bot) + sep + json_kv("gap_to_floor", gap_floor) + sep +
-           "\"anchorage\": {\"left\": " + side(0) + ", \"right\": " + side(1) + "}" + sep +
-           "\"terzaghi\": " +
-           Obj({{"K1", p_K1},
-                {"Ka", p_Ka},
-                {"Ka_value", Ka},
-                {"ktan_025", p_025},
-                {"overburden", sigma_n}}) +
-           sep + "\"giroud\": {\"overburden\": " + giroud_sc(sigma_n) +
-           ",\n      \"simulated_pressure\": " + giroud_sc(p_arc) +
-           ",\n      \"pressure_top_inner\": " + giroud_sc(p_top) +
-           ",\n      \"giroud_arching\": " + giroud_sc(p_025) +
-           ",\n      \"anchored_simulated_pull_in\": " +
-           anchored(p_arc, [&](double) { return pull_sim; }) +
-           ",\n      \"anchored_closed_form\": " + anchored(p_arc, pull_cf(m_cf)) +
-           ",\n      \"anchored_mobilised_shear\": " + anchored(p_arc, pull_cf(m_sim)) +
-           ",\n      \"anchored_closed_form_overburden\": " + anchored(sigma_n, pull_cf(m_cf)) +
-           "}";
+    json.clear();
+    for (const auto &kv : values) json += json_kv(kv.first, kv.second) + sep;
+    json += "\"anchorage\": {\"left\": " + side(0) + ", \"right\": " + side(1) + "}" + sep +
+            ClosedForms(gamma, J, m_cf, m_sim, p_arc, pr.top_inner, pull_sim);
     PetscFunctionReturn(0);
   }
 };
