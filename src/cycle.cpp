@@ -159,6 +159,7 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
   for (size_t m = 0; fuse && m < sim.mats.size(); ++m)
     fuse = sim.mats[m].model->linear_elastic_rate(elastic[2 * m], elastic[2 * m + 1]);
   if (fuse) pp.elastic = elastic.data();
+  pp.hoop = sim.hoop.empty() ? nullptr : sim.hoop.data(); // -geometry axisymmetric
   std::vector<double> energy;
   if (fuse && sim.step_energy) {
     for (const auto &m : sim.mats) energy.insert(energy.end(), {m.el.E, m.el.nu});
@@ -247,6 +248,7 @@ PetscErrorCode StepWith(Simulation &sim, const Load &load, double dt, StepReport
       b.stress = P.stress;
       b.eps_p = P.eps_p;
       if (eigen) b.eigen = sim.eigen.data();
+      b.hoop = pp.hoop;
       sim.mats[m].model->update_stress(b);
     }
   }

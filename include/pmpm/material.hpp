@@ -26,6 +26,10 @@ struct StressBatch {
   // Optional eigenstrain increment (waste degradation, degradation.hpp): 3 per particle (xx,
   // yy, zz); the stress sees de - de*. Rate-form models only (Material::rate_form).
   const double *eigen = nullptr;
+  // -geometry axisymmetric (geometry.hpp): 2 per particle, the hoop strain increment d_thth dt
+  // (the stress's zz component is then the hoop stress) and the hoop stretch F_thth = r / r0;
+  // null in plane strain (zero strain, F_zz = 1).
+  const double *hoop = nullptr;
 };
 
 struct ElasticConstants {
@@ -95,6 +99,7 @@ inline void predictor_corrector(const StressBatch &b, const ElasticConstants &el
     const int p = b.idx[k];
     Mat3 de, dw;
     strain_and_spin(b.dudx + p * DIM * DIM, de, dw);
+    if (b.hoop) de(2, 2) = b.hoop[2 * p];
     if (b.eigen)
       for (int d = 0; d < 3; ++d) de(d, d) -= b.eigen[3 * p + d];
     Mat3 s =

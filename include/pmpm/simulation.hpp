@@ -6,6 +6,7 @@
 #include "pmpm/chain.hpp"
 #include "pmpm/degradation.hpp"
 #include "pmpm/design.hpp"
+#include "pmpm/geometry.hpp"
 #include "pmpm/grid.hpp"
 #include "pmpm/interface.hpp"
 #include "pmpm/material.hpp"
@@ -68,8 +69,9 @@ struct Settings {
   // checkpoint.hpp: write the state every K steps (0: never) and after every stage; resume
   PetscInt checkpoint_every = 0;
   bool checkpoint_stage_end = false;
-  std::string restart;                // -restart FILE (empty: a fresh run)
-  Solver solver = Solver::Relaxation; // -solver
+  std::string restart;                       // -restart FILE (empty: a fresh run)
+  Solver solver = Solver::Relaxation;        // -solver
+  Geometry geometry = Geometry::PlaneStrain; // -geometry (geometry.hpp)
 };
 
 struct MaterialEntry {
@@ -210,6 +212,7 @@ struct Simulation {
   std::vector<ParticleLoad> loads;       // surface loads, every rank alike (particles.hpp)
   std::vector<PetscInt> traction_idx;    // particles carrying a surface load (this rank)
   std::vector<double> dudx;              // L dt per particle (scratch)
+  std::vector<double> hoop;              // axisymmetric: hoop increment, stretch (2, scratch)
   std::vector<int> fbar_group;           // -fbar: each particle's cell and body (scratch)
   std::vector<double> fbar_sums;         // -fbar: volumes per group (scratch)
   std::vector<double> fbar_shift;        // -fbar: group pressure less the particle's (scratch)

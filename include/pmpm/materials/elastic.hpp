@@ -50,7 +50,7 @@ public:
       const int p = b.idx[k];
       const double *g = b.dudx + p * DIM * DIM;
       double *s = b.stress + p * NSTRESS;
-      double exx = g[0], eyy = g[3], ezz = 0;
+      double exx = g[0], eyy = g[3], ezz = b.hoop ? b.hoop[2 * p] : 0.0;
       if (b.eigen) {
         exx -= b.eigen[3 * p];
         eyy -= b.eigen[3 * p + 1];
@@ -65,9 +65,11 @@ private:
 };
 
 // Compressible neo-Hookean: sigma = (mu (B - I) + lambda ln J I) / J, B = F F^T (plane strain,
-// F_zz = 1). Hyperelastic, so the stress is a function of F alone: exact at any deformation.
-inline Mat3 neo_hookean_stress(const ElasticConstants &c, const double *Fp) {
+// F_zz = 1; axisymmetric, F_zz = F_thth = r / r0). Hyperelastic, so the stress is a function of F
+// alone: exact at any deformation.
+inline Mat3 neo_hookean_stress(const ElasticConstants &c, const double *Fp, double Fzz = 1.0) {
   Mat3 F = Mat3::Identity();
+  F(2, 2) = Fzz;
   for (int i = 0; i < DIM; ++i)
     for (int j = 0; j < DIM; ++j) F(i, j) = Fp[i * DIM + j];
   const double J = F.determinant();
@@ -92,7 +94,8 @@ public:
   void update_stress(const StressBatch &b) const override {
     for (int k = 0; k < b.n; ++k) {
       const int p = b.idx[k];
-      tensor_to_stress(neo_hookean_stress(c_, b.F + p * DIM * DIM), b.stress + p * NSTRESS);
+      const double Fzz = b.hoop ? b.hoop[2 * p + 1] : 1.0;
+      tensor_to_stress(neo_hookean_stress(c_, b.F + p * DIM * DIM, Fzz), b.stress + p * NSTRESS);
     }
   }
 
