@@ -1,4 +1,4 @@
-"""-geometry axisymmetric against closed forms (docs/method.md, section 8; docs/verification.md).
+"""-geometry axisymmetric against closed forms (docs/method.md, section 9; docs/verification.md).
 
 usage: test_axisymmetric.py EXE NP OUTDIR
 

@@ -1,6 +1,6 @@
 // The 2D geometry of a run (-geometry): plane strain (the default) or axisymmetric.
 //
-// Axisymmetric (docs/method.md, section 8): x is the radius r >= 0, y the axis z, and every
+// Axisymmetric (docs/method.md, section 9): x is the radius r >= 0, y the axis z, and every
 // extensive quantity is per radian of the ring a particle sweeps about the axis. A scene's
 // particles keep their plane-strain description (area A, unit weight, face tractions per unit
 // length); the run multiplies each by the radius once, at setup (GeometryWeight):

@@ -1,5 +1,5 @@
 // A thick-walled cylinder under internal and external pressure (Lame), axisymmetric
-// (-geometry axisymmetric; docs/method.md, section 8): inner radius a (0: a solid cylinder, its
+// (-geometry axisymmetric; docs/method.md, section 9): inner radius a (0: a solid cylinder, its
 // inner face the axis), outer radius b, height H between rollers on z = 0 and z = H (the grid ends
 // there), so that u_z = 0 and the cylinder is in plane strain along its axis. The grid starts at
 // r = a (the inner pressure is the xmin face's traction) and runs two cells beyond b (the outer

@@ -42,7 +42,7 @@ const std::vector<SceneEntry> &Scenes() {
       {"trapdoor", make_trapdoor_scene,
        "active trapdoor in cohesionless soil (method.md 6.4, trapdoor.md)"},
       {"cylinder", make_cylinder_scene,
-       "thick-walled cylinder under pressure, axisymmetric (Lame; method.md 8)"},
+       "thick-walled cylinder under pressure, axisymmetric (Lame; method.md 9)"},
   };
   return scenes;
 }
