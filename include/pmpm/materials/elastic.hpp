@@ -45,12 +45,20 @@ public:
     return true;
   }
   void update_stress(const StressBatch &b) const override {
+    if (b.hoop) // the geometry once per batch (geometry.hpp)
+      update<true>(b);
+    else
+      update<false>(b);
+  }
+
+private:
+  template <bool Hoop> void update(const StressBatch &b) const {
     const double lam = c_.lambda(), G2 = 2.0 * c_.G();
     for (int k = 0; k < b.n; ++k) {
       const int p = b.idx[k];
       const double *g = b.dudx + p * DIM * DIM;
       double *s = b.stress + p * NSTRESS;
-      double exx = g[0], eyy = g[3], ezz = b.hoop ? b.hoop[2 * p] : 0.0;
+      double exx = g[0], eyy = g[3], ezz = Hoop ? b.hoop[2 * p] : 0;
       if (b.eigen) {
         exx -= b.eigen[3 * p];
         eyy -= b.eigen[3 * p + 1];
@@ -59,8 +67,6 @@ public:
       elastic_rate_update(lam, G2, g, exx, eyy, ezz, s);
     }
   }
-
-private:
   ElasticConstants c_;
 };
 
@@ -92,10 +98,17 @@ public:
   bool rate_form() const override { return kRateForm; }
   bool plastic() const override { return kPlastic; }
   void update_stress(const StressBatch &b) const override {
-    for (int k = 0; k < b.n; ++k) {
-      const int p = b.idx[k];
-      const double Fzz = b.hoop ? b.hoop[2 * p + 1] : 1.0;
-      tensor_to_stress(neo_hookean_stress(c_, b.F + p * DIM * DIM, Fzz), b.stress + p * NSTRESS);
+    if (b.hoop) { // the geometry once per batch: F_zz = F_thth (geometry.hpp)
+      for (int k = 0; k < b.n; ++k) {
+        const int p = b.idx[k];
+        tensor_to_stress(neo_hookean_stress(c_, b.F + p * DIM * DIM, b.hoop[2 * p + 1]),
+                         b.stress + p * NSTRESS);
+      }
+    } else {
+      for (int k = 0; k < b.n; ++k) {
+        const int p = b.idx[k];
+        tensor_to_stress(neo_hookean_stress(c_, b.F + p * DIM * DIM), b.stress + p * NSTRESS);
+      }
     }
   }
 
