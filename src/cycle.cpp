@@ -115,6 +115,7 @@ PetscErrorCode GridToParticles(StepState &S, const ActiveHooks &h, const double 
   pp.pic = sim.set.pic;
   for (int d = 0; d < DIM; ++d) pp.gdir[d] = S.load.gdir[d];
   pp.elastic = elastic;
+  pp.hoop = sim.hoop.empty() ? nullptr : sim.hoop.data(); // -geometry axisymmetric
   if (elastic && sim.step_energy) { // relaxation's energy check: G2P sums the elastic energy
     for (const auto &m : sim.mats) energy.insert(energy.end(), {m.el.E, m.el.nu});
     pp.energy = energy.data();

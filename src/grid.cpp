@@ -50,6 +50,7 @@ namespace {
 // global vector.
 void SetView(const Grid &g, bool ghosted, GridView &v) {
   v.h = g.h;
+  v.axisymmetric = g.axisymmetric;
   for (int d = 0; d < DIM; ++d) {
     v.origin[d] = g.origin[d];
     v.ncell[d] = g.ncell[d];

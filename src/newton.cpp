@@ -49,7 +49,9 @@ struct NewtonSolver final : EquilibriumSolver {
   }
   PetscErrorCode destroy() override;
   // bonded chains and interfaces only (CheckSupported)
-  bool supports(SolverFeature f) const override { return f != SolverFeature::FrictionalFaces; }
+  bool supports(SolverFeature f) const override {
+    return f != SolverFeature::FrictionalFaces && f != SolverFeature::Axisymmetric;
+  }
   // MUMPS reads its -mat_mumps_* options at the first factorisation
   bool reads_later(const char *option) const override {
     return !std::strncmp(option, "mat_mumps_", 10);

@@ -148,6 +148,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PetscCall(PmpmOptionsEnum("-solver", SolverHelp().c_str(), nullptr, SolverEnumNames(), solver,
                             &solver, nullptr));
   s.solver = Solvers()[(size_t)solver].name;
+  PetscCall(PmpmOptionsEnum("-geometry",
+                            "2D geometry: plane_strain, or axisymmetric (x the radius r >= 0, y "
+                            "the axis; quantities per radian; relaxation only, no chains, no "
+                            "-fbar)",
+                            nullptr, GeometryNames, (PetscEnum)s.geometry, (PetscEnum *)&s.geometry,
+                            nullptr));
   PetscOptionsEnd();
 
   PmpmCheckInput(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
@@ -261,6 +267,7 @@ PetscErrorCode SimulationIndexParticles(Simulation &sim) {
     if (P.load[p] >= 0) sim.traction_idx.push_back(p);
   }
   sim.dudx.resize(static_cast<size_t>(P.n) * DIM * DIM);
+  if (sim.set.geometry == Geometry::Axisymmetric) sim.hoop.resize(static_cast<size_t>(P.n) * 2);
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscFunctionReturn(0);
 }
@@ -434,6 +441,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscOptionsEnd();
   if (sim.scene) PetscCall(sim.scene->setup(sim));
   PetscCall(BoundaryFromOptions(sim));
+  PetscCall(GeometryCheck(sim));
   PetscCheck(!sim.mats.empty() || !sim.chain_specs.empty() || help, sim.comm, PETSC_ERR_PLIB,
              "scene defined no material");
   // F-bar with the particles' own pressures is unstable under dilatant flow (the c-phi footing
@@ -610,6 +618,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   PetscCall(BalanceSetup(sim, init)); // may recreate the grid and generate init again
   if (!help) PetscCall(CheckMemoryParticles(sim, mem, (PetscInt)init.size()));
   PetscCall(ApplyFaceTractions(sim, init));
+  PetscCall(GeometryWeight(sim, init));
   if (nchain > 0) AssignBodies(sim, init);
   PetscCall(BuildLoadTable(sim, init));
   // The PMPM support spans at most two cells per direction: 0 < l <= h/2.

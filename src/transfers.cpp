@@ -62,7 +62,8 @@ namespace {
 // Multi: several bodies per node (each particle writes its own body's block, runtime stride);
 // one body keeps the compile-time stride of before (measured: 5-11 % of a step otherwise).
 // Affine: APIC momentum m (w v + B a) (affine.hpp).
-template <class Shape, bool Multi, bool Affine>
+// Axi (-geometry axisymmetric, geometry.hpp): the hoop stress's radial force -V sigma_thth N / r.
+template <class Shape, bool Multi, bool Affine, bool Axi = false>
 void p2g_impl(const ParticleView &P, const Load &load_, const GridView &G_, const PetscInt *idx,
               PetscInt nidx, const double *pshift) {
   // Local copies: the stores into the nodes (double *) may alias the caller's doubles (the grid
@@ -91,6 +92,7 @@ void p2g_impl(const ParticleView &P, const Load &load_, const GridView &G_, cons
     // (F-bar: the pressure is the group's, p_bar - p added to the normal stresses; antilock.hpp)
     const double ps = pshift ? pshift[p] : 0.0;
     const double sxx = V * (s[0] + ps), syy = V * (s[1] + ps), sxy = V * s[3];
+    const double shoop = Axi ? V * s[2] / P.x[p * DIM] : 0.0; // per unit N: V sigma_thth / r
     const double fb0 = load.factor * P.weight[p] * load.gdir[0];
     const double fb1 = load.factor * P.weight[p] * load.gdir[1];
     for (int b = 0; b < S.ny; ++b) {
@@ -107,7 +109,10 @@ void p2g_impl(const ParticleView &P, const Load &load_, const GridView &G_, cons
           node[GridDof::P + 0] += mB[0] * a0 + mB[1] * a1;
           node[GridDof::P + 1] += mB[2] * a0 + mB[3] * a1;
         }
-        node[GridDof::F + 0] += w * fb0 - (sxx * gx + sxy * gy);
+        if (Axi)
+          node[GridDof::F + 0] += w * fb0 - (sxx * gx + sxy * gy) - w * shoop;
+        else
+          node[GridDof::F + 0] += w * fb0 - (sxx * gx + sxy * gy);
         node[GridDof::F + 1] += w * fb1 - (sxy * gx + syy * gy);
         node[GridDof::FEXT + 0] += w * fb0;
         node[GridDof::FEXT + 1] += w * fb1;
@@ -122,7 +127,12 @@ template <class Shape>
 void p2g(const ParticleView &P, const Load &load, const GridView &G, const PetscInt *idx,
          PetscInt nidx, const double *pshift) {
   const bool multi = G.nbody > 1, affine = P.B != nullptr;
-  if (multi && affine)
+  // axisymmetric runs have one body (GeometryCheck refuses chains)
+  if (G.axisymmetric && affine)
+    p2g_impl<Shape, false, true, true>(P, load, G, idx, nidx, pshift);
+  else if (G.axisymmetric)
+    p2g_impl<Shape, false, false, true>(P, load, G, idx, nidx, pshift);
+  else if (multi && affine)
     p2g_impl<Shape, true, true>(P, load, G, idx, nidx, pshift);
   else if (multi)
     p2g_impl<Shape, true, false>(P, load, G, idx, nidx, pshift);
@@ -333,7 +343,10 @@ enum class G2PMode { Fused, Velocity, Kinematics };
 // One particle loop for the three G2P variants: gather from the nodes (velocity, acceleration,
 // velocity gradient), then the FLIP/PIC velocity update and/or the kinematics. Affine (APIC,
 // affine.hpp): the velocity is the grid's (PIC, no FLIP part) and B = sum_i w v_i (x_i - x_p)^T.
-template <class Shape, G2PMode mode, bool Multi, bool Affine>
+// Axi (-geometry axisymmetric, geometry.hpp): the hoop strain increment dt v_r(x_p) / r_p and the
+// hoop stretch r / r0 (into prm.hoop, or into the fused stress update), the volume det(F) F_thth
+// V0.
+template <class Shape, G2PMode mode, bool Multi, bool Affine, bool Axi = false>
 void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, const Grid *grid,
              const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats *st) {
   // local copies of the views, as in p2g_impl (the particle stores may alias the caller's)
@@ -351,6 +364,7 @@ void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, co
   const double ox = G0.origin[0], oy = G0.origin[1];
   const double gd0 = prm.gdir[0], gd1 = prm.gdir[1];
   const double *el = prm.elastic, *en = prm.elastic ? prm.energy : nullptr;
+  double *const hoop = prm.hoop;
   // the sums in registers (through st they were stored and reloaded every particle: the stores
   // into the particle arrays may alias them); the same order, the same sums
   double c2max = 0, v2max = 0, kinetic = 0, weight_power = 0, elastic = 0;
@@ -402,22 +416,28 @@ void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, co
       v[1] = (1.0 - pic) * (v[1] + dt * ag1) + pic * vg1;
     }
     if (!kin) continue;
-    x[0] += dt * vg0; // eq. 5
+    const double dhoop = Axi ? dt * vg0 / x[0] : 0.0; // at the step's start, where L is taken
+    x[0] += dt * vg0;                                 // eq. 5
     x[1] += dt * vg1;
     double dul[DIM * DIM] = {L0 * dt, L1 * dt, L2 * dt, L3 * dt}, *F = P.F + p * DIM * DIM;
     const double *du = dul;
     if (el) { // the stress update fused (one pass over the particles, no dudx round trip)
       const double *e = el + 2 * P.mat[p];
-      elastic_rate_update(e[0], e[1], du, du[0], du[3], 0.0, P.stress + p * NSTRESS);
+      elastic_rate_update(e[0], e[1], du, du[0], du[3], dhoop, P.stress + p * NSTRESS);
     } else
       for (int k = 0; k < DIM * DIM; ++k) dudx[p * DIM * DIM + k] = dul[k];
+    const double Fhoop = Axi ? x[0] / P.x0[p * DIM] : 1.0;
+    if (Axi && hoop) {
+      hoop[2 * p] = dhoop;
+      hoop[2 * p + 1] = Fhoop;
+    }
     // F <- (I + L dt) F
     const double F0 = F[0], F1 = F[1], F2 = F[2], F3 = F[3];
     F[0] = (1.0 + du[0]) * F0 + du[1] * F2;
     F[1] = (1.0 + du[0]) * F1 + du[1] * F3;
     F[2] = du[2] * F0 + (1.0 + du[3]) * F2;
     F[3] = du[2] * F1 + (1.0 + du[3]) * F3;
-    const double J = F[0] * F[3] - F[1] * F[2];
+    const double J = Axi ? (F[0] * F[3] - F[1] * F[2]) * Fhoop : F[0] * F[3] - F[1] * F[2];
     P.vol[p] = J * P.vol0[p];
     if (en) { // every particle, in order, as ElasticEnergy (relaxation.cpp)
       const double *c = en + 2 * P.mat[p];
@@ -441,6 +461,8 @@ void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, co
       what = "non-finite position or velocity";
     else if (!(x[0] >= ox && x[0] < hx && x[1] >= oy && x[1] < hy))
       what = "particle left the grid";
+    else if (Axi && !(x[0] > 0.0))
+      what = "particle reached the axis r = 0";
     if (what) {
       if (st->bad++ == 0) {
         st->bad_pid = P.pid[p];
@@ -481,7 +503,12 @@ template <class Shape, G2PMode mode>
 void g2p_impl(const ParticleView &P, const GridView &G0, const GridView *G1, const Grid *grid,
               const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats *st) {
   const bool multi = G0.nbody > 1, affine = P.B != nullptr;
-  if (multi && affine)
+  // axisymmetric runs have one body (GeometryCheck refuses chains)
+  if (G0.axisymmetric && affine)
+    g2p_one<Shape, mode, false, true, true>(P, G0, G1, grid, prm, wave_modulus, dudx, st);
+  else if (G0.axisymmetric)
+    g2p_one<Shape, mode, false, false, true>(P, G0, G1, grid, prm, wave_modulus, dudx, st);
+  else if (multi && affine)
     g2p_one<Shape, mode, true, true>(P, G0, G1, grid, prm, wave_modulus, dudx, st);
   else if (multi)
     g2p_one<Shape, mode, true, false>(P, G0, G1, grid, prm, wave_modulus, dudx, st);

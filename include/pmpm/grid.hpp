@@ -32,6 +32,7 @@ struct GridView {
   PetscInt ld = 0;                             // nodes per row of data (0: gm[0])
   int nbody = 1;                               // bodies (blocks of NDOF) per node
   int nd = GridDof::NDOF;                      // values per node: nbody * NDOF + extra
+  bool axisymmetric = false;                   // x is the radius (geometry.hpp)
   double *data = nullptr;
   PetscInt row() const { return ld ? ld : gm[0]; }
   double *node(PetscInt i, PetscInt j) const {
@@ -45,6 +46,7 @@ struct Grid {
   double origin[DIM] = {0, 0};
   PetscInt ncell[DIM] = {0, 0};
   int nbody = 1, nd = GridDof::NDOF;                     // see GridView
+  bool axisymmetric = false;                             // see GridView
   PetscInt s[DIM] = {0, 0}, m[DIM] = {0, 0};             // owned nodes
   PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0};           // ghosted nodes
   PetscInt cell_lo[DIM] = {0, 0}, cell_hi[DIM] = {0, 0}; // owned cells [lo, hi)

@@ -26,6 +26,10 @@ struct StressBatch {
   // Optional eigenstrain increment (waste degradation, degradation.hpp): 3 per particle (xx,
   // yy, zz); the stress sees de - de*. Rate-form models only (Material::rate_form).
   const double *eigen = nullptr;
+  // -geometry axisymmetric (geometry.hpp): 2 per particle, the hoop strain increment d_thth dt
+  // (the stress's zz component is then the hoop stress) and the hoop stretch F_thth = r / r0;
+  // null in plane strain (zero strain, F_zz = 1).
+  const double *hoop = nullptr;
 };
 
 struct ElasticConstants {
@@ -89,12 +93,15 @@ inline Mat3 elastic_increment(const ElasticConstants &c, const Mat3 &de) {
 
 // The rate-form elastoplastic update shared by the plastic models: elastic predictor (Jaumann-
 // rotated old stress + C : de) and a return map ret(Mat3 &sigma, double &eps_p) per particle.
-template <class Return>
-inline void predictor_corrector(const StressBatch &b, const ElasticConstants &el, Return &&ret) {
+// Hoop: the axisymmetric hoop strain increment (StressBatch::hoop) in de's zz entry.
+template <bool Hoop, class Return>
+inline void predictor_corrector_loop(const StressBatch &b, const ElasticConstants &el,
+                                     Return &ret) {
   for (int k = 0; k < b.n; ++k) {
     const int p = b.idx[k];
     Mat3 de, dw;
     strain_and_spin(b.dudx + p * DIM * DIM, de, dw);
+    if (Hoop) de(2, 2) = b.hoop[2 * p];
     if (b.eigen)
       for (int d = 0; d < 3; ++d) de(d, d) -= b.eigen[3 * p + d];
     Mat3 s =
@@ -104,6 +111,14 @@ inline void predictor_corrector(const StressBatch &b, const ElasticConstants &el
     if (b.eps_p) b.eps_p[p] = ep;
     tensor_to_stress(s, b.stress + p * NSTRESS);
   }
+}
+// The geometry chosen once per batch, not per particle.
+template <class Return>
+inline void predictor_corrector(const StressBatch &b, const ElasticConstants &el, Return &&ret) {
+  if (b.hoop)
+    predictor_corrector_loop<true>(b, el, ret);
+  else
+    predictor_corrector_loop<false>(b, el, ret);
 }
 
 } // namespace pmpm

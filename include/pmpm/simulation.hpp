@@ -7,6 +7,7 @@
 #include "pmpm/chain.hpp"
 #include "pmpm/degradation.hpp"
 #include "pmpm/design.hpp"
+#include "pmpm/geometry.hpp"
 #include "pmpm/grid.hpp"
 #include "pmpm/interface.hpp"
 #include "pmpm/material.hpp"
@@ -66,8 +67,9 @@ struct Settings {
   // checkpoint.hpp: write the state every K steps (0: never) and after every stage; resume
   PetscInt checkpoint_every = 0;
   bool checkpoint_stage_end = false;
-  std::string restart;               // -restart FILE (empty: a fresh run)
-  std::string solver = "relaxation"; // -solver: a name of the solver table (solver.hpp)
+  std::string restart;                       // -restart FILE (empty: a fresh run)
+  std::string solver = "relaxation";         // -solver: a name of the solver table (solver.hpp)
+  Geometry geometry = Geometry::PlaneStrain; // -geometry (geometry.hpp)
 };
 
 struct MaterialEntry {
@@ -192,6 +194,7 @@ struct Simulation {
   std::vector<ParticleLoad> loads;       // surface loads, every rank alike (particles.hpp)
   std::vector<PetscInt> traction_idx;    // particles carrying a surface load (this rank)
   std::vector<double> dudx;              // L dt per particle (scratch)
+  std::vector<double> hoop;              // axisymmetric: hoop increment, stretch (2, scratch)
   std::vector<int> fbar_group;           // -fbar: each particle's cell and body (scratch)
   std::vector<double> fbar_sums;         // -fbar: volumes per group (scratch)
   std::vector<double> fbar_shift;        // -fbar: group pressure less the particle's (scratch)

@@ -16,6 +16,7 @@ struct Simulation;
 // What the rest of the code may ask of a solver instead of comparing names.
 enum class SolverFeature {
   FrictionalFaces = 0, // chains with slipping or separating faces, frictional interfaces
+  Axisymmetric = 1,    // -geometry axisymmetric (hoop terms in the residual, not the tangent)
 };
 
 class EquilibriumSolver {

@@ -110,6 +110,9 @@ struct G2PParams {
   // (elastic_energy, material.hpp) of the stresses it updated into G2PStats::elastic: the pass
   // over the particles that relaxation's energy check made every few steps, fused (null: none).
   const double *energy = nullptr;
+  // -geometry axisymmetric without the fused update: per particle the hoop strain increment
+  // dt v_r / r and the hoop stretch r / r0, for the materials (StressBatch::hoop; null: none)
+  double *hoop = nullptr;
 };
 
 struct G2PStats {

@@ -16,6 +16,7 @@ std::unique_ptr<Scene> make_trench_scene();
 std::unique_ptr<Scene> make_cover_scene();
 std::unique_ptr<Scene> make_footing_scene();
 std::unique_ptr<Scene> make_trapdoor_scene();
+std::unique_ptr<Scene> make_cylinder_scene();
 
 const std::vector<SceneEntry> &Scenes() {
   static const std::vector<SceneEntry> scenes = {
@@ -40,6 +41,8 @@ const std::vector<SceneEntry> &Scenes() {
        "strip footing: bearing capacity in pressure stages (method.md 2.6)"},
       {"trapdoor", make_trapdoor_scene,
        "active trapdoor in cohesionless soil (method.md 6.4, trapdoor.md)"},
+      {"cylinder", make_cylinder_scene,
+       "thick-walled cylinder under pressure, axisymmetric (Lame; method.md 9)"},
   };
   return scenes;
 }

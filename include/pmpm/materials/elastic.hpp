@@ -45,12 +45,20 @@ public:
     return true;
   }
   void update_stress(const StressBatch &b) const override {
+    if (b.hoop) // the geometry once per batch (geometry.hpp)
+      update<true>(b);
+    else
+      update<false>(b);
+  }
+
+private:
+  template <bool Hoop> void update(const StressBatch &b) const {
     const double lam = c_.lambda(), G2 = 2.0 * c_.G();
     for (int k = 0; k < b.n; ++k) {
       const int p = b.idx[k];
       const double *g = b.dudx + p * DIM * DIM;
       double *s = b.stress + p * NSTRESS;
-      double exx = g[0], eyy = g[3], ezz = 0;
+      double exx = g[0], eyy = g[3], ezz = Hoop ? b.hoop[2 * p] : 0;
       if (b.eigen) {
         exx -= b.eigen[3 * p];
         eyy -= b.eigen[3 * p + 1];
@@ -59,15 +67,15 @@ public:
       elastic_rate_update(lam, G2, g, exx, eyy, ezz, s);
     }
   }
-
-private:
   ElasticConstants c_;
 };
 
 // Compressible neo-Hookean: sigma = (mu (B - I) + lambda ln J I) / J, B = F F^T (plane strain,
-// F_zz = 1). Hyperelastic, so the stress is a function of F alone: exact at any deformation.
-inline Mat3 neo_hookean_stress(const ElasticConstants &c, const double *Fp) {
+// F_zz = 1; axisymmetric, F_zz = F_thth = r / r0). Hyperelastic, so the stress is a function of F
+// alone: exact at any deformation.
+inline Mat3 neo_hookean_stress(const ElasticConstants &c, const double *Fp, double Fzz = 1.0) {
   Mat3 F = Mat3::Identity();
+  F(2, 2) = Fzz;
   for (int i = 0; i < DIM; ++i)
     for (int j = 0; j < DIM; ++j) F(i, j) = Fp[i * DIM + j];
   const double J = F.determinant();
@@ -90,9 +98,17 @@ public:
   bool rate_form() const override { return kRateForm; }
   bool plastic() const override { return kPlastic; }
   void update_stress(const StressBatch &b) const override {
-    for (int k = 0; k < b.n; ++k) {
-      const int p = b.idx[k];
-      tensor_to_stress(neo_hookean_stress(c_, b.F + p * DIM * DIM), b.stress + p * NSTRESS);
+    if (b.hoop) { // the geometry once per batch: F_zz = F_thth (geometry.hpp)
+      for (int k = 0; k < b.n; ++k) {
+        const int p = b.idx[k];
+        tensor_to_stress(neo_hookean_stress(c_, b.F + p * DIM * DIM, b.hoop[2 * p + 1]),
+                         b.stress + p * NSTRESS);
+      }
+    } else {
+      for (int k = 0; k < b.n; ++k) {
+        const int p = b.idx[k];
+        tensor_to_stress(neo_hookean_stress(c_, b.F + p * DIM * DIM), b.stress + p * NSTRESS);
+      }
     }
   }
 
