@@ -89,11 +89,8 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   double sigma_y = 0, H = 0;
   c.nu = 0.0;
   PetscOptionsBegin(comm, prefix.c_str(), ("Membrane material " + spec.material).c_str(), nullptr);
-  PetscCall(PmpmOptionsEnum("-law",
-                            "Membrane law: linear, tension_only (slack in compression), "
-                            "elastoplastic (1D von Mises, linear hardening)",
-                            nullptr, MembraneLawNames, (PetscEnum)c.law.kind,
-                            (PetscEnum *)&c.law.kind, nullptr));
+  PetscCall(PmpmOptionsEnum("-law", MembraneLaws::help().c_str(), nullptr, MembraneLawNames,
+                            (PetscEnum)c.law.kind, (PetscEnum *)&c.law.kind, nullptr));
   PetscCall(PmpmOptionsReal("-E", "Young's modulus (Pa), > 0", nullptr, c.E, &c.E, &hasE));
   PetscCall(PmpmOptionsReal("-nu", "Poisson's ratio, 0 <= nu < 0.5 (plane-strain stiffness)",
                             nullptr, c.nu, &c.nu, nullptr));
@@ -122,10 +119,10 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   if (c.density <= 0) c.density = c.gamma > 0 ? c.gamma / 9.81 : 1000.0;
   const double Eeff = c.stiffness == StiffnessKind::PlaneStrain ? c.E / (1 - c.nu * c.nu) : c.E;
   c.law.J = Eeff * c.thickness;
-  if (c.law.kind == MembraneLawKind::Elastoplastic) {
+  if (c.law.plastic()) {
     PmpmCheckInput(sigma_y > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-%syield_stress must be > 0 with -%slaw elastoplastic (got %g)", prefix.c_str(),
-                   prefix.c_str(), sigma_y);
+                   "-%syield_stress must be > 0 with -%slaw %s (got %g)", prefix.c_str(),
+                   prefix.c_str(), MembraneLawNames[c.law.kind], sigma_y);
     PmpmCheckInput(H >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%shardening must be >= 0",
                    prefix.c_str());
     c.law.yield_T = sigma_y * c.thickness;

@@ -135,7 +135,7 @@ std::string ChainSummaryJson(const Simulation &sim) {
       sbot = std::fmax(sbot, std::fabs(c.slip_bot[i]));
     }
     auto mid = [&](int j, int d) { return 0.5 * (c.x[j * DIM + d] + c.x[(j + 1) * DIM + d]); };
-    s += "    \"" + c.name + "\": {\n      \"law\": \"" + MembraneLawNames[(int)c.law.kind] + "\"" +
+    s += "    \"" + c.name + "\": {\n      \"law\": \"" + MembraneLawNames[c.law.kind] + "\"" +
          sep + "\"axial_stiffness_kind\": \"" + StiffnessKindNames[(int)c.stiffness] + "\"" + sep +
          json_kv("axial_stiffness", c.law.J) + sep + json_kv("thickness", c.thickness) + sep +
          json_kv("points", double(c.n)) + sep + json_kv("line_mass", c.line_mass) + sep +

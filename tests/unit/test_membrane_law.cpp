@@ -22,7 +22,7 @@ const double J_EP = J * HARDENING / (J + HARDENING); // elastoplastic tangent
 // The return map is closed form: a few flops per call, errors of a few 1e-16 relative.
 const double RTOL = 1e-12;
 
-MembraneLaw law(MembraneLawKind kind, double hardening = HARDENING) {
+MembraneLaw law(int kind, double hardening = HARDENING) {
   MembraneLaw m;
   m.kind = kind;
   m.J = J;
@@ -39,19 +39,21 @@ double bilinear(double eps, double hardening) {
 
 // ---------------------------------------------------------------------------------------------
 void test_names() {
-  CHECK(std::strcmp(MembraneLawNames[int(MembraneLawKind::Linear)], "linear") == 0);
-  CHECK(std::strcmp(MembraneLawNames[int(MembraneLawKind::TensionOnly)], "tension_only") == 0);
-  CHECK(std::strcmp(MembraneLawNames[int(MembraneLawKind::Elastoplastic)], "elastoplastic") == 0);
+  CHECK(std::strcmp(MembraneLawNames[int(MembraneLawId<LinearMembrane>)], "linear") == 0);
+  CHECK(std::strcmp(MembraneLawNames[int(MembraneLawId<TensionOnlyMembrane>)], "tension_only") ==
+        0);
+  CHECK(std::strcmp(MembraneLawNames[int(MembraneLawId<ElastoplasticMembrane>)], "elastoplastic") ==
+        0);
   CHECK(std::strcmp(MembraneLawNames[3], "MembraneLawKind") == 0);
   CHECK(std::strcmp(MembraneLawNames[4], "MEMBRANE_") == 0);
   CHECK(MembraneLawNames[5] == nullptr);
   const MembraneLaw def;
-  CHECK(def.kind == MembraneLawKind::Linear);
+  CHECK(def.kind == MembraneLawId<LinearMembrane>);
 }
 
 // Linear: T = J eps exactly, in tension and compression; state untouched; never slack.
 void test_linear() {
-  const MembraneLaw m = law(MembraneLawKind::Linear);
+  const MembraneLaw m = law(MembraneLawId<LinearMembrane>);
   pmpm_test::Lcg g(1);
   for (int i = 0; i < 200; ++i) {
     const double eps = g.uniform(-0.2, 0.2);
@@ -66,7 +68,7 @@ void test_linear() {
 
 // Tension only: J eps in tension, exactly zero and slack in compression, zero and taut at 0.
 void test_tension_only() {
-  const MembraneLaw m = law(MembraneLawKind::TensionOnly);
+  const MembraneLaw m = law(MembraneLawId<TensionOnlyMembrane>);
   pmpm_test::Lcg g(2);
   int n_slack = 0;
   for (int i = 0; i < 200; ++i) {
@@ -98,7 +100,7 @@ void test_tension_only() {
 // branch J (eps - eps_p) = yield_T + H alpha with alpha = eps_p, so
 // eps_p = (J eps - yield_T) / (J + H).
 void monotonic(int n, double hardening) {
-  const MembraneLaw m = law(MembraneLawKind::Elastoplastic, hardening);
+  const MembraneLaw m = law(MembraneLawId<ElastoplasticMembrane>, hardening);
   const double eps_max = 0.12;
   double ep = 0, al = 0;
   for (int i = 1; i <= n; ++i) {
@@ -123,7 +125,7 @@ void test_monotonic() {
   monotonic(1000, 0.0);
   monotonic(1, 10 * J); // stiff hardening (tangent close to J)
   // Elastic below the yield strain: state untouched bit for bit.
-  const MembraneLaw m = law(MembraneLawKind::Elastoplastic);
+  const MembraneLaw m = law(MembraneLawId<ElastoplasticMembrane>);
   double ep = 0, al = 0;
   bool slack = false;
   const double T = m.tension(0.999 * EPS_Y, ep, al, slack);
@@ -141,7 +143,7 @@ void test_monotonic() {
 // then harden along the reverse bilinear branch of slope J H / (J + H). Done with fine
 // increments and again with one jump per stage.
 void cycle(int n) {
-  const MembraneLaw m = law(MembraneLawKind::Elastoplastic);
+  const MembraneLaw m = law(MembraneLawId<ElastoplasticMembrane>);
   const double eps_peak = 0.08;
   double ep = 0, al = 0;
   bool slack = false;
@@ -196,7 +198,7 @@ void test_unload_reverse() {
 // alpha never decreases and grows by exactly |d eps_p|, and each step's plastic work is >= 0.
 void test_consistency() {
   for (double hardening : {HARDENING, 0.0}) {
-    const MembraneLaw m = law(MembraneLawKind::Elastoplastic, hardening);
+    const MembraneLaw m = law(MembraneLawId<ElastoplasticMembrane>, hardening);
     pmpm_test::Lcg g(3);
     double ep = 0, al = 0, eps = 0;
     int n_plastic = 0, n_elastic = 0;
@@ -229,8 +231,8 @@ void test_consistency() {
 // J, slack 0, plastic J H / (J + H). Differences of the closed-form return are exact but for
 // round-off and the kink: states within the step of the surface are skipped.
 void test_tangent() {
-  for (MembraneLawKind kind :
-       {MembraneLawKind::Linear, MembraneLawKind::TensionOnly, MembraneLawKind::Elastoplastic}) {
+  for (int kind : {MembraneLawId<LinearMembrane>, MembraneLawId<TensionOnlyMembrane>,
+                   MembraneLawId<ElastoplasticMembrane>}) {
     const MembraneLaw m = law(kind);
     pmpm_test::Lcg g(7);
     double ep = 0, al = 0, eps = 0;
@@ -252,9 +254,9 @@ void test_tangent() {
     }
     CHECK(checked > 1900);
   }
-  const MembraneLaw e = law(MembraneLawKind::Elastoplastic);
+  const MembraneLaw e = law(MembraneLawId<ElastoplasticMembrane>);
   CHECK_CLOSE(e.tangent(2 * EPS_Y, 0, 0), J_EP, RTOL * J);
-  CHECK(law(MembraneLawKind::TensionOnly).tangent(-0.01, 0, 0) == 0.0);
+  CHECK(law(MembraneLawId<TensionOnlyMembrane>).tangent(-0.01, 0, 0) == 0.0);
 }
 
 } // namespace

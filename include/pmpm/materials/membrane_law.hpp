@@ -1,85 +1,91 @@
 // Axial law of a geomembrane modelled as a chain of points (docs/method.md, sections 6.7 and 7.1):
 // each segment carries a force per unit width T (N/m) from its engineering strain
 //   eps = current length / initial length - 1.
-// Three kinds:
-//   linear         T = J eps                      (the catenary check, docs/method.md, section 6.1)
-//   tension_only   T = max(J eps, 0)              (a sheet buckles instead of carrying
-//                                                   compression; docs/method.md, section 7.1
-//                                                   "Wrinkles")
-//   elastoplastic  1D von Mises, linear isotropic hardening, closed-form return map
-//                  (Simo & Hughes 1998, ch. 1; de Souza Neto, Peric & Owen 2008, ch. 6):
-//                    T_tr = J (eps - eps_p),  f = |T_tr| - (yield_T + hardening alpha)
-//                    f > 0:  dg = f / (J + hardening),  eps_p += dg sign(T_tr),  alpha += dg,
-//                            T = T_tr - J dg sign(T_tr)
-//                  Linear hardening makes the consistency condition linear in dg, so the return
-//                  is exact for any strain increment. Path dependent: call with the new total
-//                  strain each step and keep (eps_p, alpha) per segment.
+// The laws are one header each in materials/membrane/ (a struct with its name, description,
+// tension and consistent tangent) and one entry of MembraneLaws below; -mat_<name>_law, its help,
+// its allowed list and docs/options.md come from that list. The dispatch is a chain of compares
+// the compiler folds like a switch: no virtual call per segment.
+//
 // J is the sheet's axial stiffness per width: E t for a uniaxial sheet, E t / (1 - nu^2) with the
 // out-of-plane strain held at zero (the caller chooses and says which). yield_T = sigma_y t,
 // hardening = H t with H = d(sigma_y)/d(alpha). Expected J > 0, yield_T >= 0, J + hardening > 0.
 //
 // Header-only, no PETSc: usable from the kernels and from the unit tests.
 #pragma once
+#include "pmpm/materials/membrane/elastoplastic.hpp"
+#include "pmpm/materials/membrane/linear.hpp"
+#include "pmpm/materials/membrane/tension_only.hpp"
+#include <string>
+#include <type_traits>
 
 namespace pmpm {
 
-enum class MembraneLawKind { Linear = 0, TensionOnly = 1, Elastoplastic = 2 };
-// PETSc enum-list layout (values, enum name, prefix, null) for PetscOptionsEnum.
-inline constexpr const char *MembraneLawNames[] = {
-    "linear", "tension_only", "elastoplastic", "MembraneLawKind", "MEMBRANE_", nullptr};
+template <class... L> struct MembraneLawList {
+  static constexpr int size = sizeof...(L);
+  // PETSc enum-list layout (values, enum name, prefix, null) for PetscOptionsEnum.
+  static constexpr const char *names[] = {L::name..., "MembraneLawKind", "MEMBRANE_", nullptr};
+  static std::string help() {
+    std::string s = "Membrane law:";
+    int k = 0;
+    ((s += std::string(k++ ? ", " : " ") + L::name + " (" + L::description + ")"), ...);
+    return s;
+  }
+  template <class Law> static constexpr int id() {
+    int k = 0, found = -1;
+    ((found = (found < 0 && std::is_same_v<Law, L>) ? k : found, ++k), ...);
+    return found;
+  }
+};
+
+// The membrane-law table: one entry per law, its position its -law value.
+using MembraneLaws = MembraneLawList<LinearMembrane, TensionOnlyMembrane, ElastoplasticMembrane>;
+inline constexpr const char *const *MembraneLawNames = MembraneLaws::names;
+template <class Law> inline constexpr int MembraneLawId = MembraneLaws::id<Law>();
 
 struct MembraneLaw {
-  MembraneLawKind kind = MembraneLawKind::Linear;
+  int kind = 0;         // the law's position in MembraneLaws (PetscEnum)
   double J = 0;         // axial stiffness (N/m)
-  double yield_T = 0;   // initial yield force per width (N/m) (elastoplastic): sigma_y * t
+  double yield_T = 0;   // initial yield force per width (N/m) (plastic laws): sigma_y * t
   double hardening = 0; // plastic hardening modulus per width (N/m): H * t, dT/d(alpha)
 
-  // Tension (N/m) for the total engineering strain eps. Elastoplastic only: eps_p (plastic
+  // Tension (N/m) for the total engineering strain eps. Plastic laws only: eps_p (plastic
   // strain) and alpha (accumulated plastic strain, sum of |d eps_p|) are updated in place; an
-  // elastic step leaves them untouched bit for bit. The other kinds never touch them.
+  // elastic step leaves them untouched bit for bit. The other laws never touch them.
   // slack: true where the sheet carries no force because it is in compression (tension_only);
-  // always false for the other kinds.
+  // always false for the other laws.
   double tension(double eps, double &eps_p, double &alpha, bool &slack) const {
-    slack = false;
-    switch (kind) {
-    case MembraneLawKind::Linear:
-      return J * eps;
-    case MembraneLawKind::TensionOnly: {
-      const double T = J * eps;
-      slack = T < 0.0;
-      return slack ? 0.0 : T;
-    }
-    case MembraneLawKind::Elastoplastic: {
-      const double T_tr = J * (eps - eps_p);
-      const double f = (T_tr < 0.0 ? -T_tr : T_tr) - (yield_T + hardening * alpha);
-      if (!(f > 0.0)) return T_tr;
-      const double sgn = T_tr < 0.0 ? -1.0 : 1.0;
-      const double dg = f / (J + hardening);
-      eps_p += dg * sgn;
-      alpha += dg;
-      return T_tr - J * dg * sgn;
-    }
-    }
-    return 0.0;
+    return Tension(MembraneLaws{}, eps, eps_p, alpha, slack);
   }
-
   // The consistent tangent dT/d(eps) of tension() at the total strain eps from the committed
-  // state (eps_p, alpha) of the step's start (the implicit solver's bar stiffness): J where
-  // elastic (linear, a taut tension_only sheet), 0 where slack, J hardening / (J + hardening)
-  // where the return map is active (the closed-form return is exact, so this is its derivative).
+  // state (eps_p, alpha) of the step's start (the implicit solver's bar stiffness).
   double tangent(double eps, double eps_p, double alpha) const {
-    switch (kind) {
-    case MembraneLawKind::Linear:
-      return J;
-    case MembraneLawKind::TensionOnly:
-      return J * eps < 0.0 ? 0.0 : J;
-    case MembraneLawKind::Elastoplastic: {
-      const double T_tr = J * (eps - eps_p);
-      const double f = (T_tr < 0.0 ? -T_tr : T_tr) - (yield_T + hardening * alpha);
-      return f > 0.0 ? J * hardening / (J + hardening) : J;
-    }
-    }
-    return 0.0;
+    return Tangent(MembraneLaws{}, eps, eps_p, alpha);
+  }
+  // Whether the law reads the yield options.
+  bool plastic() const { return Plastic(MembraneLaws{}); }
+
+private:
+  template <class... L>
+  double Tension(MembraneLawList<L...>, double eps, double &eps_p, double &alpha,
+                 bool &slack) const {
+    double T = 0.0;
+    int k = 0;
+    slack = false;
+    (void)((kind == k++ ? (T = L::tension(*this, eps, eps_p, alpha, slack), true) : false) || ...);
+    return T;
+  }
+  template <class... L>
+  double Tangent(MembraneLawList<L...>, double eps, double eps_p, double alpha) const {
+    double D = 0.0;
+    int k = 0;
+    (void)((kind == k++ ? (D = L::tangent(*this, eps, eps_p, alpha), true) : false) || ...);
+    return D;
+  }
+  template <class... L> bool Plastic(MembraneLawList<L...>) const {
+    bool p = false;
+    int k = 0;
+    (void)((kind == k++ ? (p = L::plastic, true) : false) || ...);
+    return p;
   }
 };
 
