@@ -6,8 +6,9 @@ usage: test_newton_robust.py EXE NP OUTDIR
 
 1. Cutting. The strip footing (options/footing.opts without F-bar, one pressure stage) at 0.95 of
    Prandtl's q_u in ONE nominal load step (-newton_load_steps 1) with the solves capped at 4
-   Newton iterations (-snes_max_it 4; uncapped it converges with 14 in all): steps fail (DIVERGED_MAX_IT) and are
-   halved until they converge, then grow back (measured 20 halvings, 19 load steps). It must hold
+   Newton iterations (-snes_max_it 4; uncapped it converges with 14 in all): steps fail
+   (DIVERGED_MAX_IT) and are halved until they converge, then grow back (measured 20 halvings,
+   19 load steps). It must hold
    and settle as the 10-step run does (measured 0.49 %, bound 1 %: the same plastic path to
    within the steps' size) and as relaxation (0.63 %, bound 2 %, test_newton_plastic's bound).
 2. Collapse. The footing at 1.15 q_u (above the locked mesh's collapse load, about 1.10 q_u, and
