@@ -103,8 +103,9 @@ Assessment assess(const std::vector<double> &h, const std::vector<DesignRecord> 
   if (!a.not_converged.empty()) {
     a.verdict = Verdict::NotConverged;
     a.reason = capped_text(a.not_converged) +
-               " stopped at the step cap before reaching -tol: not an equilibrium, no design "
-               "answer (raise -max_steps or the stage's step cap, or docs/method.md, section 3)";
+               " stopped at the step cap (-solver newton: at its last load-step halving) before "
+               "reaching -tol: not an equilibrium, no design answer (raise -max_steps or the "
+               "stage's step cap, or docs/method.md, section 3)";
     return a;
   }
   const DesignAnswer *c = checked_answer(fine);

@@ -185,8 +185,8 @@ static PetscErrorCode Run(int *code) {
 }
 
 // The process's exit code for an error (docs/outputs.md: exit codes): 1 for input the run refused
-// (an option, an options file, a checkpoint), 2 for a run that failed (an instability, a collapse
-// of Newton's load steps, a file that could not be written, too little memory).
+// (an option, an options file, a checkpoint), 2 for a run that failed (an instability, a file that
+// could not be written, too little memory).
 static int ExitCodeFor(PetscErrorCode e) {
   switch (e) {
   case PETSC_ERR_USER_INPUT:

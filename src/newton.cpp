@@ -20,7 +20,11 @@
 //    residual (landfill at h = 0.25 mm, one load step: 11 equilibrium steps, 4 now).
 //  - Membrane chains bonded on both faces are more internal force on the same du
 //    (chain_implicit.hpp); the stencil is then one node wider. Stages run on a LoadPath (stage 0
-//    ramps the loads, a shrinkage stage its eigenstrain at full load; Scene::stage_change).
+//    ramps the loads, a shrinkage stage its eigenstrain at full load, a void stage releases the
+//    removed particles' forces at full load; Scene::stage_change).
+//  - A load step whose solve fails is halved (-newton_max_cuts in a row); one failing at the last
+//    halving ends the stage not converged (relaxation's capped stage: a collapse), never an
+//    answer.
 //  - Default linear solver: a direct LU by MUMPS (any rank count; PETSc's own LU is serial), the
 //    line search bt; every -snes_/-ksp_/-pc_ option overrides them.
 #include "pmpm/options.hpp"
@@ -45,7 +49,8 @@ struct NewtonSolver final : EquilibriumSolver {
   std::string report() const override {
     return "\"newton\": {\"load_steps\": " + std::to_string(solved_steps) +
            ", \"nonlinear_iterations\": " + std::to_string(newton_its) +
-           ", \"linear_iterations\": " + std::to_string(linear_its) + "},\n  ";
+           ", \"linear_iterations\": " + std::to_string(linear_its) +
+           ", \"halvings\": " + std::to_string(halvings) + "},\n  ";
   }
   PetscErrorCode destroy() override;
   // bonded chains and interfaces only (CheckSupported)
@@ -59,10 +64,13 @@ struct NewtonSolver final : EquilibriumSolver {
 
   Simulation *sim = nullptr;
   PetscInt solved_steps = 0, newton_its = 0, linear_its = 0; // over the run
+  PetscInt halvings = 0; // failed load steps retried at half the increment, over the run
   DM da = nullptr;
   SNES snes = nullptr;
   Mat J = nullptr;
   Vec U = nullptr, R = nullptr, fext = nullptr, maskG = nullptr;
+  Vec R0 = nullptr;   // a void stage's residual at its start (the removed particles' forces)
+  double release = 0; // the share of R0 still held by the load path (1 - t: LoadPath)
   Vec Uloc = nullptr, Rloc = nullptr, maskL = nullptr;
   PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0}, s[DIM] = {0, 0}, m[DIM] = {0, 0};
   PetscInt load_steps = 10, max_cuts = 6, max_equilibrium = 30;
@@ -119,6 +127,11 @@ constexpr double kAtolShare = 1e-3;
 // step, h = 0.25 mm: 16 Newton iterations in all with 1e-4, 10 with 2e-2, 9 with 0.1; at
 // h = 0.125 mm 9 with 0.3, 0.1 or 0.02).
 constexpr double kEquilibriumRtol = 0.1;
+// Newton iterations a solve may take before it counts as failed (and its load step is halved),
+// unless -snes_max_it is given: PETSc's 50. With 15 the footing at 1.15 q_u reported its collapse
+// later (63 s against 55 s: its load steps near the limit need more, so they were halved more
+// often) and the footing at 1.05 q_u failed earlier.
+constexpr PetscInt kMaxIterations = 50;
 
 NodalView LocalView(const NewtonSolver &ns, double *data) {
   NodalView v;
@@ -199,6 +212,7 @@ template <class Shape> PetscErrorCode Residual(NewtonSolver &ns, Vec U, Vec R) {
   PetscCall(VecZeroEntries(R));
   PetscCall(DMLocalToGlobal(ns.da, ns.Rloc, ADD_VALUES, R));
   PetscCall(VecAXPY(R, -ns.lambda, ns.fext));
+  if (ns.release != 0) PetscCall(VecAXPY(R, -ns.release, ns.R0)); // a void stage's path
   const double *u, *mk;
   PetscInt n;
   PetscCall(VecGetLocalSize(R, &n));
@@ -570,10 +584,15 @@ PetscErrorCode IncrementInCells(NewtonSolver &ns, double *frac) {
 // and the share of the stage's change imposed by t (Scene::stage_change). Stage 0 ramps the loads
 // from zero; a shrinkage stage holds them at full and imposes its eigenstrain in proportion to t
 // (each load step its share, in the trial stress update and in the commit: a stress-free strain,
-// so the tangent has no term of its own).
+// so the tangent has no term of its own). A void stage (particles removed by the scene's
+// begin_stage) holds the loads at full and releases the removed particles' forces: R0, the
+// residual of the remaining particles at the stage's start (in equilibrium before the removal, so
+// R0 is what the removed ones carried), is held back by the share 1 - t (R(du) - (1 - t) R0 = 0,
+// solved by du = 0 at t = 0), the usual excavation path, which a failed step can halve.
 struct LoadPath {
   bool ramp_loads = true; // f_ext from 0 to full over the stage; else full throughout
   double shrink = 0;      // the stage's volumetric shrinkage (Simulation::stage_shrink)
+  bool release = false;   // a void stage: R0 released from 1 to 0 over the stage
   double load(double t) const { return ramp_loads ? t : 1.0; }
 };
 
@@ -591,6 +610,7 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   PetscCall(Loads(ns));
   PetscCall(ChainStencils(ns));
   ns.lambda = lambda;
+  ns.release = path.release ? 1.0 - t1 : 0.0;
   ns.shrink = path.shrink * (t1 - t0);
   ns.eigen.clear();
   if (ns.shrink != 0) { // this step's share of the eigenstrain, per particle (3: xx yy zz)
@@ -641,7 +661,7 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   ++ns.solved_steps;
   ++sim.run.step;
   ++sim.run.stage_step;
-  sim.run.time = t1; // pseudo-time: the stage's path parameter
+  if (!equilibrium) sim.run.time = t1; // pseudo-time: the stage's path parameter
   if (!sim.set.quiet) {
     double rn;
     PetscCall(SNESGetFunctionNorm(ns.snes, &rn));
@@ -658,6 +678,20 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
     PetscCall(PetscPrintf(sim.comm, "\n"));
   }
   PetscCall(sim.scene->monitor(sim));
+  PetscFunctionReturn(0);
+}
+
+// A void stage's R0 (LoadPath): the residual at full load and du = 0 of the particles that remain.
+PetscErrorCode ReleaseStart(NewtonSolver &ns) {
+  PetscFunctionBeginUser;
+  PetscCall(Loads(ns));
+  PetscCall(ChainStencils(ns));
+  ns.lambda = 1.0;
+  ns.release = 0.0;
+  ns.eigen.clear();
+  ns.reset = false;
+  PetscCall(VecZeroEntries(ns.U));
+  PetscCall(FormResidual(ns.snes, ns.U, ns.R0, &ns));
   PetscFunctionReturn(0);
 }
 
@@ -679,12 +713,12 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver &ns) {
              PETSC_ERR_SUP,
              "-solver newton does not support frictional interfaces (-interface_type %s) yet%s",
              InterfaceTypeNames[(int)sim.iface.type], fix);
-  // stages: stage 0's loads and shrinkage stages have a load path (Newton's LoadPath)
+  // stages: stage 0's loads, shrinkage and void stages have a load path (Newton's LoadPath)
   for (PetscInt k = 1; k <= sim.scene->stages(); ++k) {
     const StageChange ch = sim.scene->stage_change(k);
-    PetscCheck(ch == StageChange::Shrink, sim.comm, PETSC_ERR_SUP,
-               "-solver newton runs stage 0 and shrinkage stages only: stage %d of scene %s "
-               "changes %s%s",
+    PetscCheck(ch == StageChange::Shrink || ch == StageChange::Void, sim.comm, PETSC_ERR_SUP,
+               "-solver newton runs stage 0, shrinkage and void stages only: stage %d of scene "
+               "%s changes %s%s",
                (int)k, sim.set.scene.c_str(), StageChangeNames[(int)ch], fix);
   }
   PetscCheck(!sim.set.dynamic, sim.comm, PETSC_ERR_SUP,
@@ -752,8 +786,10 @@ PetscErrorCode NewtonSolver::setup(Simulation &sim) {
                            "under -newton_cell_fraction; a step whose solve fails is halved up "
                            "to -newton_max_cuts times)",
                            nullptr, ns->load_steps, &ns->load_steps, nullptr));
-  PetscCall(PmpmOptionsInt("-max_cuts", "Halvings of a failed load step, 0..30", nullptr,
-                           ns->max_cuts, &ns->max_cuts, nullptr));
+  PetscCall(PmpmOptionsInt("-max_cuts",
+                           "Halvings in a row of a failed load step below the nominal one, 0..30 "
+                           "(a step failing at the last ends the stage NOT converged: a collapse)",
+                           nullptr, ns->max_cuts, &ns->max_cuts, nullptr));
   PetscCall(PmpmOptionsInt("-equilibrium_steps",
                            "Most equilibrium steps at full load on the reset grid to reach -tol, "
                            "0..1000",
@@ -828,6 +864,7 @@ PetscErrorCode NewtonSolver::setup(Simulation &sim) {
   PetscCall(VecDuplicate(ns->U, &ns->R));
   PetscCall(VecDuplicate(ns->U, &ns->fext));
   PetscCall(VecDuplicate(ns->U, &ns->maskG));
+  PetscCall(VecDuplicate(ns->U, &ns->R0));
   PetscCall(DMCreateLocalVector(ns->da, &ns->Uloc));
   PetscCall(VecDuplicate(ns->Uloc, &ns->Rloc));
   PetscCall(VecDuplicate(ns->Uloc, &ns->maskL));
@@ -839,8 +876,12 @@ PetscErrorCode NewtonSolver::setup(Simulation &sim) {
   PetscCall(SNESSetType(ns->snes, SNESNEWTONLS));
   SNESLineSearch ls;
   PetscCall(SNESGetLineSearch(ns->snes, &ls));
+  // bt: backtracking with the Armijo condition, one residual per trial length, the full step
+  // whenever it decreases |R| enough (the quadratic rate near equilibrium); l2 spends extra
+  // residuals on every iteration, basic has no fallback but the load step's halving
   PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBT));
-  PetscCall(SNESSetTolerances(ns->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, 50, PETSC_DEFAULT));
+  PetscCall(SNESSetTolerances(ns->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, kMaxIterations,
+                              PETSC_DEFAULT));
   KSP ksp;
   PC pc;
   PetscCall(SNESGetKSP(ns->snes, &ksp));
@@ -867,7 +908,7 @@ PetscErrorCode NewtonSolver::destroy() {
   PetscFunctionBeginUser;
   PetscCall(SNESDestroy(&ns->snes));
   PetscCall(MatDestroy(&ns->J));
-  for (Vec *v : {&ns->U, &ns->R, &ns->fext, &ns->maskG, &ns->Uloc, &ns->Rloc, &ns->maskL})
+  for (Vec *v : {&ns->U, &ns->R, &ns->fext, &ns->maskG, &ns->R0, &ns->Uloc, &ns->Rloc, &ns->maskL})
     PetscCall(VecDestroy(v));
   PetscCall(DMDestroy(&ns->da));
   PetscFunctionReturn(0);
@@ -889,9 +930,10 @@ PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
   // the stage's load path (CheckSupported refused the other changes; a scene's begin_stage may
   // not switch a chain's faces from bonded either)
   const StageChange change = sim.scene->stage_change(sim.stage);
-  PetscCheck(change == StageChange::Loads || change == StageChange::Shrink, sim.comm, PETSC_ERR_SUP,
-             "-solver newton: stage %d changes %s; use -solver relaxation", (int)sim.stage,
-             StageChangeNames[(int)change]);
+  PetscCheck(change == StageChange::Loads || change == StageChange::Shrink ||
+                 change == StageChange::Void,
+             sim.comm, PETSC_ERR_SUP, "-solver newton: stage %d changes %s; use -solver relaxation",
+             (int)sim.stage, StageChangeNames[(int)change]);
   for (const Chain &c : sim.chains)
     PetscCheck(c.top.type == FaceType::Bonded && c.bottom.type == FaceType::Bonded, sim.comm,
                PETSC_ERR_SUP,
@@ -902,24 +944,62 @@ PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
   LoadPath path;
   path.ramp_loads = change == StageChange::Loads;
   path.shrink = change == StageChange::Shrink ? sim.stage_shrink : 0.0;
+  path.release = change == StageChange::Void;
+  const char *what = path.ramp_loads ? "the loads from zero"
+                     : path.release  ? "a void's forces released at full load"
+                                     : "shrinkage at full load";
   if (!s.quiet)
     PetscCall(PetscPrintf(sim.comm,
                           "pmpm %s: %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g m, shape "
                           "%s, -solver newton: %" PetscInt_FMT " load steps, tolerance %g; stage "
                           "%d: %s%s\n",
                           s.scene.c_str(), sim.ncell[0], sim.ncell[1], s.h,
-                          ShapeKindNames[(int)s.shape], ns.load_steps, s.tol, (int)sim.stage,
-                          path.ramp_loads ? "the loads from zero" : "shrinkage at full load",
+                          ShapeKindNames[(int)s.shape], ns.load_steps, s.tol, (int)sim.stage, what,
                           path.ramp_loads ? "" : " (stage fraction per step)"));
-  // load steps, each halved while its solve fails. Under -newton_cell_fraction f the first step
-  // sizes them all: from the unloaded state its increment is the load's alone, |du| / h per unit
-  // load (later steps also carry the grid reset's correction, which does not shrink with them),
-  // so the step count is ceil(that / f), the first step redone when it moved more than f cells.
+  if (path.release) PetscCall(ReleaseStart(ns));
+  // load steps. A step whose solve fails (SNES diverged, the line search failed, or its iteration
+  // cap) is retried at half the increment, up to -newton_max_cuts halvings below the nominal step
+  // in a row; each converged step doubles the increment back toward the nominal one. A step that
+  // fails at the smallest increment ends the stage out of equilibrium (Collapse below). Under
+  // -newton_cell_fraction f the first step sizes them all: from the unloaded state its increment
+  // is the load's alone, |du| / h per unit load (later steps also carry the grid reset's
+  // correction, which does not shrink with them), so the step count is ceil(that / f), the first
+  // step redone when it moved more than f cells.
   double nominal = 1.0 / double(ns.load_steps);
-  double t = 0, dl = nominal; // the path parameter: the load factor in stage 0
-  PetscInt cuts = 0;
+  double t = 0; // the path parameter: the load factor in stage 0
+  PetscInt cuts = 0, total_cuts = 0;
   bool sized = ns.cell_fraction <= 0;
+  auto Collapse = [&](double target, SNESConvergedReason reason,
+                      bool equilibrium) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(StaticResidual(sim, s.shape, &run.ratio));
+    run.converged = false;
+    run.stage_seconds = MPI_Wtime() - t_start;
+    run.wall_seconds += run.stage_seconds;
+    if (!s.quiet) {
+      if (equilibrium)
+        PetscCall(PetscPrintf(sim.comm,
+                              "NOT converged: stage %d's equilibrium step at full load did not "
+                              "converge (SNES: %s) with unbalanced-force ratio %.3e > %g (%.2f "
+                              "s): the stage cannot reach equilibrium (a collapse). See "
+                              "-snes_converged_reason -snes_monitor.\n",
+                              (int)sim.stage, SNESConvergedReasons[reason], run.ratio, s.tol,
+                              run.stage_seconds));
+      else
+        PetscCall(PetscPrintf(
+            sim.comm,
+            "NOT converged: stage %d stopped at %s %.6g with unbalanced-force ratio %.3e > %g "
+            "(%.2f s): the load step to %.6g did not converge (SNES: %s) at %" PetscInt_FMT
+            " halvings of the nominal step (-newton_max_cuts), so the stage finds no "
+            "equilibrium beyond %.6g of its path: a collapse, unless more halvings "
+            "(-newton_max_cuts) or load steps (-newton_load_steps) carry it further.\n",
+            (int)sim.stage, path.ramp_loads ? "load factor" : "stage fraction", t, run.ratio, s.tol,
+            run.stage_seconds, target, SNESConvergedReasons[reason], ns.max_cuts, t));
+    }
+    PetscFunctionReturn(0);
+  };
   while (t < 1.0 - 1e-12) {
+    const double dl = nominal * std::ldexp(1.0, -static_cast<int>(cuts));
     const double target = std::fmin(1.0, t + dl);
     SNESConvergedReason reason;
     bool rejected;
@@ -934,24 +1014,25 @@ PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
                               "%.3g cells per unit load)%s\n",
                               ns.cell_fraction, 1.0 / nominal, ns.frac / target,
                               rejected ? "; first step redone" : ""));
-      dl = nominal;
+      cuts = 0;
       if (rejected) continue;
     }
     if (reason <= 0) {
-      PetscCheck(++cuts <= ns.max_cuts, sim.comm, PETSC_ERR_NOT_CONVERGED,
-                 "-solver newton: stage %d's load step to %s %g did not converge (SNES: %s) "
-                 "after %" PetscInt_FMT " halvings. Raise -newton_load_steps (now %" PetscInt_FMT
-                 ") or -newton_max_cuts, or see -snes_converged_reason -snes_monitor.",
-                 (int)sim.stage, path.ramp_loads ? "load factor" : "stage fraction", target,
-                 SNESConvergedReasons[reason], ns.max_cuts, ns.load_steps);
-      dl *= 0.5;
+      if (cuts >= ns.max_cuts) {
+        PetscCall(Collapse(target, reason, false));
+        PetscFunctionReturn(0);
+      }
+      ++cuts;
+      ++total_cuts;
+      ++ns.halvings;
       if (!s.quiet)
-        PetscCall(PetscPrintf(sim.comm, "  load step to %.4f failed (%s): step halved to %.4g\n",
-                              target, SNESConvergedReasons[reason], dl));
+        PetscCall(PetscPrintf(sim.comm, "  load step to %.6g failed (%s): step halved to %.4g\n",
+                              target, SNESConvergedReasons[reason],
+                              nominal * std::ldexp(1.0, -static_cast<int>(cuts))));
       continue;
     }
     t = target;
-    dl = std::fmin(nominal, 2.0 * dl); // back toward the nominal step after a cut
+    if (cuts > 0) --cuts; // back toward the nominal step after a cut
   }
   // equilibrium steps on the reset grid until relaxation's criterion holds
   PetscCall(StaticResidual(sim, s.shape, &run.ratio));
@@ -963,9 +1044,10 @@ PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
     SNESConvergedReason reason;
     bool rejected;
     PetscCall(LoadStep(ns, path, 1.0, 1.0, false, true, &reason, &rejected));
-    PetscCheck(reason > 0, sim.comm, PETSC_ERR_NOT_CONVERGED,
-               "-solver newton: an equilibrium step at full load did not converge (SNES: %s)",
-               SNESConvergedReasons[reason]);
+    if (reason <= 0) {
+      PetscCall(Collapse(1.0, reason, true));
+      PetscFunctionReturn(0);
+    }
     PetscCall(StaticResidual(sim, s.shape, &run.ratio));
     if (!s.quiet)
       PetscCall(PetscPrintf(sim.comm,
@@ -977,12 +1059,14 @@ PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
   run.stage_seconds = MPI_Wtime() - t_start;
   run.wall_seconds += run.stage_seconds;
   if (!s.quiet)
-    PetscCall(PetscPrintf(
-        sim.comm,
-        "%s: unbalanced-force ratio %.3e %s %g after %" PetscInt_FMT " load steps (%" PetscInt_FMT
-        " in all), %" PetscInt_FMT " Newton and %" PetscInt_FMT " linear iterations (%.2f s)\n",
-        run.converged ? "converged" : "NOT converged", run.ratio, run.converged ? "<=" : ">", s.tol,
-        run.stage_step, ns.solved_steps, ns.newton_its, ns.linear_its, run.stage_seconds));
+    PetscCall(PetscPrintf(sim.comm,
+                          "%s: unbalanced-force ratio %.3e %s %g after %" PetscInt_FMT
+                          " load steps (%" PetscInt_FMT " in all, %" PetscInt_FMT
+                          " halved), %" PetscInt_FMT " Newton and %" PetscInt_FMT
+                          " linear iterations (%.2f s)\n",
+                          run.converged ? "converged" : "NOT converged", run.ratio,
+                          run.converged ? "<=" : ">", s.tol, run.stage_step, ns.solved_steps,
+                          total_cuts, ns.newton_its, ns.linear_its, run.stage_seconds));
   PetscFunctionReturn(0);
 }
 
