@@ -13,12 +13,12 @@ namespace pmpm {
 
 namespace {
 
-PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
+// The options blocks' groups, in -help's order (PetscOptionsObject: the block's, for the
+// readers' macros). The run: scene, discretisation, step cap and output.
+PetscErrorCode RunOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, Settings &s) {
   char scene[64] = "", dir[PETSC_MAX_PATH_LEN] = "";
   PetscBool set = PETSC_FALSE;
-  PetscInt ng = DIM;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
   const std::string scenes = SceneList();
   PetscCall(PetscOptionsString("-scene", ("Scene: " + scenes).c_str(), nullptr, scene, scene,
                                sizeof(scene), &set));
@@ -44,15 +44,20 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PmpmCheckInput(!set || dir[0], comm, PETSC_ERR_USER_INPUT,
                  "-output_dir is empty: give a directory (default output/<scene>)");
   s.output_dir = set ? std::string(dir) : "output/" + s.scene;
-  PetscBool quiet = s.quiet ? PETSC_TRUE : PETSC_FALSE,
-            dynamic = s.dynamic ? PETSC_TRUE : PETSC_FALSE,
-            musl = s.musl ? PETSC_TRUE : PETSC_FALSE, fbar = s.fbar ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool quiet = s.quiet ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscOptionsBool("-quiet", "No progress lines", nullptr, quiet, &quiet, nullptr));
   s.quiet = quiet;
   PetscCall(PmpmOptionsInt("-output_every",
                            "Also write a particle time series every K steps (0: "
                            "final state only)",
                            nullptr, s.output_every, &s.output_every, nullptr));
+  PetscFunctionReturn(0);
+}
+
+// The relaxation: convergence, damping, history, load ramp.
+PetscErrorCode RelaxationOptions(PetscOptionItems *PetscOptionsObject, Settings &s) {
+  PetscBool set = PETSC_FALSE;
+  PetscFunctionBeginUser;
   PetscCall(PmpmOptionsReal("-tol", "Convergence: unbalanced-force ratio max|f|/mean|f_ext|, > 0",
                             nullptr, s.tol, &s.tol, nullptr));
   PetscCall(PmpmOptionsEnum("-damping",
@@ -86,6 +91,15 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                            nullptr, s.relax_history_every, &s.relax_history_every, nullptr));
   PetscCall(PmpmOptionsInt("-ramp_steps", "Load ramp length in steps (0: full load at once)",
                            nullptr, s.ramp_steps, &s.ramp_steps, nullptr));
+  PetscFunctionReturn(0);
+}
+
+// The method: transfers, inertia, gravity, dynamics, MUSL, F-bar.
+PetscErrorCode MethodOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, Settings &s) {
+  PetscBool set = PETSC_FALSE, dynamic = s.dynamic ? PETSC_TRUE : PETSC_FALSE,
+            musl = s.musl ? PETSC_TRUE : PETSC_FALSE, fbar = s.fbar ? PETSC_TRUE : PETSC_FALSE;
+  PetscInt ng = DIM;
+  PetscFunctionBeginUser;
   PetscCall(PmpmOptionsReal("-pic", "PIC fraction of the particle velocity update, 0..1", nullptr,
                             s.pic, &s.pic, nullptr));
   PetscCall(PmpmOptionsEnum(
@@ -126,6 +140,14 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PmpmCheckInput(s.fbar || s.fbar_pressure == FbarPressure::Particle, comm, PETSC_ERR_USER_INPUT,
                  "-fbar_pressure cell acts on F-bar's groups: add -fbar, or set -fbar_pressure "
                  "particle to run without F-bar");
+  PetscFunctionReturn(0);
+}
+
+// Checkpoint and restart; *restart_given: -restart was given (perhaps empty).
+PetscErrorCode CheckpointOptions(PetscOptionItems *PetscOptionsObject, Settings &s,
+                                 PetscBool *restart_given) {
+  PetscBool &set = *restart_given;
+  PetscFunctionBeginUser;
   PetscBool stage_end = s.checkpoint_stage_end ? PETSC_TRUE : PETSC_FALSE;
   char restart[PETSC_MAX_PATH_LEN] = "";
   PetscCall(PmpmOptionsInt("-checkpoint_every",
@@ -142,6 +164,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                                "that wrote it; any rank count)",
                                nullptr, restart, restart, sizeof(restart), &set));
   s.restart = set ? std::string(restart) : "";
+  PetscFunctionReturn(0);
+}
+
+// The solver table's entry and the geometry.
+PetscErrorCode SolverOptions(PetscOptionItems *PetscOptionsObject, Settings &s) {
+  PetscFunctionBeginUser;
   PetscEnum solver = PetscEnum(0); // the table's index (the default: its first entry)
   for (size_t k = 0; k < Solvers().size(); ++k)
     if (s.solver == Solvers()[k].name) solver = PetscEnum(k);
@@ -154,8 +182,13 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                             "-fbar)",
                             nullptr, GeometryNames, (PetscEnum)s.geometry, (PetscEnum *)&s.geometry,
                             nullptr));
-  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
 
+// The values read, checked (after the block: -help lists every option first).
+PetscErrorCode CheckSettings(MPI_Comm comm, Settings &s, PetscBool restart_given) {
+  const PetscBool set = restart_given;
+  PetscFunctionBeginUser;
   PmpmCheckInput(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
   if (!(s.h > 0)) s.h = 1; // -help without a cell size: the scenes' lengths in cells stay finite
   PmpmCheckInput(s.ppc >= 1 && s.ppc <= 8, comm, PETSC_ERR_ARG_OUTOFRANGE,
@@ -195,6 +228,20 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PmpmCheckInput(gn > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity_dir must be non-zero");
   for (int d = 0; d < DIM; ++d) s.gdir[d] /= gn;
   if (s.dynamic) s.damping = Damping::None;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
+  PetscBool restart_given = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
+  PetscCall(RunOptions(PetscOptionsObject, comm, s));
+  PetscCall(RelaxationOptions(PetscOptionsObject, s));
+  PetscCall(MethodOptions(PetscOptionsObject, comm, s));
+  PetscCall(CheckpointOptions(PetscOptionsObject, s, &restart_given));
+  PetscCall(SolverOptions(PetscOptionsObject, s));
+  PetscOptionsEnd();
+  PetscCall(CheckSettings(comm, s, restart_given));
   PetscFunctionReturn(0);
 }
 
