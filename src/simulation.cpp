@@ -457,40 +457,20 @@ PetscErrorCode SolverSetup(Simulation &sim, bool help) {
     }
   PetscFunctionReturn(0);
 }
-} // namespace
-
-PetscErrorCode SimulationSetup(Simulation &sim) {
+// -help without a scene: the scenes and the material laws (the options of no scene follow).
+PetscErrorCode ListScenesAndLaws(MPI_Comm comm) {
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
-  PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
-  PetscCall(SettingsFromOptions(sim.comm, sim.set));
-  sim.solver = make_solver(sim.set.solver); // the scene's setup may ask it what it supports
-  PetscBool help = PETSC_FALSE; // -help lists the options and runs nothing: nothing to check
-  PetscCall(PetscOptionsHasHelp(nullptr, &help));
-  if (!help) PetscCall(CheckOutputDir(sim.comm, sim.set.output_dir));
-  MemoryCheck mem;
-  PetscCall(MemoryFromOptions(sim.comm, mem));
-  sim.scene = make_scene(sim.set.scene);
-  PetscCheck(sim.scene || (help && sim.set.scene.empty()), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-scene %s is unknown; allowed: %s", sim.set.scene.c_str(), SceneList().c_str());
-  if (!sim.scene) { // -help without a scene: the scenes, then the options of no scene
-    PetscCall(
-        PetscPrintf(sim.comm, "Scenes (-scene NAME; -scene NAME -help lists its options):\n"));
-    for (const SceneEntry &e : Scenes())
-      PetscCall(PetscPrintf(sim.comm, "  %-10s %s\n", e.name, e.description));
-    PetscCall(PetscPrintf(sim.comm, "Material laws (-mat_<name>_model LAW):\n"));
-    for (const MaterialLaw &l : MaterialLaws())
-      PetscCall(PetscPrintf(sim.comm, "  %-15s %s\n", l.name, l.description));
-  }
-  PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
-  PetscCall(PmpmOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
-                            sim.chain_spacing, &sim.chain_spacing, nullptr));
-  PetscOptionsEnd();
-  if (sim.scene) PetscCall(sim.scene->setup(sim));
-  PetscCall(BoundaryFromOptions(sim));
-  PetscCall(GeometryCheck(sim));
-  PetscCheck(!sim.mats.empty() || !sim.chain_specs.empty() || help, sim.comm, PETSC_ERR_PLIB,
-             "scene defined no material");
+  PetscCall(PetscPrintf(comm, "Scenes (-scene NAME; -scene NAME -help lists its options):\n"));
+  for (const SceneEntry &e : Scenes())
+    PetscCall(PetscPrintf(comm, "  %-10s %s\n", e.name, e.description));
+  PetscCall(PetscPrintf(comm, "Material laws (-mat_<name>_model LAW):\n"));
+  for (const MaterialLaw &l : MaterialLaws())
+    PetscCall(PetscPrintf(comm, "  %-15s %s\n", l.name, l.description));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckFbarDilatancy(const Simulation &sim) {
+  PetscFunctionBeginUser;
   // F-bar with the particles' own pressures is unstable under dilatant flow (the c-phi footing
   // heaves and flows at 0.8 of its capacity; README, "Anti-locking"): refused, not run.
   for (auto &m : sim.mats)
@@ -501,11 +481,15 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
         "-fbar_pressure cell: with each particle's own pressure F-bar is unstable under "
         "dilatant flow (docs/anti-locking.md)",
         m.name.c_str(), m.name.c_str());
+  PetscFunctionReturn(0);
+}
 
+// *cmax: the fastest material's wave speed (at the given or default densities).
+PetscErrorCode SetInertia(Simulation &sim, double *cmax) {
+  PetscFunctionBeginUser;
   // Inertia: either the given densities, or one wave speed for all materials (the fastest
   // physical one), which equalises the relaxation rate of stiff and soft layers. Loads come from
   // gamma only, so the equilibrium is unchanged.
-  double cmax = 0;
   for (auto &m : sim.mats) {
     if (sim.set.inertia == InertiaScaling::None) {
       PmpmCheckInput(m.density > 0, sim.comm, PETSC_ERR_USER_INPUT,
@@ -522,18 +506,22 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
         "(-cfl x -cell_size / wave speed); check -mat_%s_E and its density",
         m.name.c_str(), m.el.E, m.density, m.name.c_str(), m.name.c_str(), c, kMaxWaveSpeed,
         sim.set.cfl * sim.set.h / c, m.name.c_str());
-    cmax = std::fmax(cmax, c);
+    *cmax = std::fmax(*cmax, c);
   }
   sim.wave_modulus.clear();
   for (auto &m : sim.mats) {
     if (sim.set.inertia == InertiaScaling::WaveSpeed)
-      m.density = m.model->wave_modulus() / (cmax * cmax);
+      m.density = m.model->wave_modulus() / (*cmax * *cmax);
     sim.wave_modulus.push_back(m.model->wave_modulus());
   }
   sim.mat_idx.assign(sim.mats.size(), {});
+  PetscFunctionReturn(0);
+}
 
+// *type_set: -interface_type was given (the chains' faces default to it).
+PetscErrorCode InterfaceFromOptions(Simulation &sim, PetscBool *type_set) {
+  PetscFunctionBeginUser;
   // Interface between colour-1 particles and the rest (skipped entirely when bonded).
-  PetscBool type_set = PETSC_FALSE;
   PetscOptionsBegin(sim.comm, "interface_", "Interface of the colour-1 body (geomembrane)",
                     nullptr);
   PetscCall(PmpmOptionsEnum("-type",
@@ -541,7 +529,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
                             "section 3.2), contact (Bardenhagen multi-velocity friction); "
                             "for a chain, the default of -chain_<name>_interface (contact)",
                             nullptr, InterfaceTypeNames, (PetscEnum)sim.iface.type,
-                            (PetscEnum *)&sim.iface.type, &type_set));
+                            (PetscEnum *)&sim.iface.type, type_set));
   // each type's own normals unless asked otherwise: the paper's cells, Bardenhagen's gradient
   sim.iface.normals = sim.iface.type == InterfaceType::Contact ? InterfaceNormals::Particles
                                                                : InterfaceNormals::Cells;
@@ -570,7 +558,13 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
              InterfaceTypeNames[(int)sim.iface.type]);
   for (int d = 0; d < DIM; ++d) sim.iface.up[d] = -sim.set.gdir[d];
   for (int f = 0; f < 2 * DIM; ++f) sim.iface.face[f] = sim.face[f];
+  PetscFunctionReturn(0);
+}
 
+// The chains' options and the chains made from the scene's specs (cmax: the continuum's fastest
+// wave speed, for their inertia; under -help a chain's unchecked defaults may stop it).
+PetscErrorCode ChainsFromOptions(Simulation &sim, PetscBool help, PetscBool type_set, double cmax) {
+  PetscFunctionBeginUser;
   // Membrane chains: each a body between the material below and above it (chain.hpp).
   // chains follow -inertia_scaling unless told otherwise: a sheet given the continuum's wave
   // speed is heavy and nearly weightless, which relaxation does not mind but which floats off
@@ -640,21 +634,16 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   }
   sim.contact.tail_share = sim.iface.tail_share;
   for (int f = 0; f < 2 * DIM; ++f) sim.contact.face[f] = sim.face[f];
+  PetscFunctionReturn(0);
+}
 
-  PetscCall(BalanceFromOptions(sim.comm, sim.balance));
-  if (help) { // -help: the grid's and Newton's options need a grid, whatever box the scene's
-    // (unchecked) defaults give; no particles
-    for (int d = 0; d < DIM; ++d)
-      sim.ncell[d] = std::min<PetscInt>(std::max<PetscInt>(sim.ncell[d], 4 * sim.size), 256);
-    PetscCall(GridCreate(sim.comm, sim.set.h > 0 ? sim.set.h : 1.0, sim.origin, sim.ncell, nbody,
-                         nchain * ChainDof::NDOF, sim.grid));
-    PetscCall(SolverSetup(sim, true));
-    PetscFunctionReturn(0);
-  }
+// The grid (its memory checked first), the particles the scene generates (balanced), their
+// tractions, weights, bodies and loads (not under -help).
+PetscErrorCode GridAndParticles(Simulation &sim, const MemoryCheck &mem, int nbody, int nchain) {
+  PetscFunctionBeginUser;
   const bool iface = sim.iface.type != InterfaceType::Bonded && nchain == 0;
   PetscCall(CheckProcessGrid(sim));
-  if (!help)
-    PetscCall(CheckMemoryGrid(sim, mem, nbody * GridDof::NDOF + nchain * ChainDof::NDOF, iface));
+  PetscCall(CheckMemoryGrid(sim, mem, nbody * GridDof::NDOF + nchain * ChainDof::NDOF, iface));
   PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody, nchain * ChainDof::NDOF,
                        sim.grid));
   if (iface) PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
@@ -663,7 +652,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   ParticleList init;
   PetscCall(sim.scene->generate(sim, init));
   PetscCall(BalanceSetup(sim, init)); // may recreate the grid and generate init again
-  if (!help) PetscCall(CheckMemoryParticles(sim, mem, (PetscInt)init.size()));
+  PetscCall(CheckMemoryParticles(sim, mem, (PetscInt)init.size()));
   PetscCall(ApplyFaceTractions(sim, init));
   PetscCall(GeometryWeight(sim, init));
   if (nchain > 0) AssignBodies(sim, init);
@@ -681,6 +670,58 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   sim.particles_setup = n;
   PetscCheck(n > 0 || nchain > 0, sim.comm, PETSC_ERR_USER_INPUT,
              "the scene produced no particles: check the geometry options against -cell_size");
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode SimulationSetup(Simulation &sim) {
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
+  PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
+  PetscCall(SettingsFromOptions(sim.comm, sim.set));
+  sim.solver = make_solver(sim.set.solver); // the scene's setup may ask it what it supports
+  PetscBool help = PETSC_FALSE; // -help lists the options and runs nothing: nothing to check
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  if (!help) PetscCall(CheckOutputDir(sim.comm, sim.set.output_dir));
+  MemoryCheck mem;
+  PetscCall(MemoryFromOptions(sim.comm, mem));
+  sim.scene = make_scene(sim.set.scene);
+  PetscCheck(sim.scene || (help && sim.set.scene.empty()), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-scene %s is unknown; allowed: %s", sim.set.scene.c_str(), SceneList().c_str());
+  if (!sim.scene) PetscCall(ListScenesAndLaws(sim.comm)); // -help without a scene
+  PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
+  PetscCall(PmpmOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
+                            sim.chain_spacing, &sim.chain_spacing, nullptr));
+  PetscOptionsEnd();
+  if (sim.scene) PetscCall(sim.scene->setup(sim));
+  PetscCall(BoundaryFromOptions(sim));
+  PetscCall(GeometryCheck(sim));
+  PetscCheck(!sim.mats.empty() || !sim.chain_specs.empty() || help, sim.comm, PETSC_ERR_PLIB,
+             "scene defined no material");
+  PetscCall(CheckFbarDilatancy(sim));
+
+  double cmax = 0; // the fastest material's wave speed
+  PetscCall(SetInertia(sim, &cmax));
+
+  PetscBool type_set = PETSC_FALSE; // -interface_type given
+  PetscCall(InterfaceFromOptions(sim, &type_set));
+
+  PetscCall(ChainsFromOptions(sim, help, type_set, cmax));
+  const int nchain = static_cast<int>(sim.chains.size());
+  const int nbody = nchain > 0 ? 2 * nchain + 1 : 1;
+
+  PetscCall(BalanceFromOptions(sim.comm, sim.balance));
+  if (help) { // -help: the grid's and Newton's options need a grid, whatever box the scene's
+    // (unchecked) defaults give; no particles
+    for (int d = 0; d < DIM; ++d)
+      sim.ncell[d] = std::min<PetscInt>(std::max<PetscInt>(sim.ncell[d], 4 * sim.size), 256);
+    PetscCall(GridCreate(sim.comm, sim.set.h > 0 ? sim.set.h : 1.0, sim.origin, sim.ncell, nbody,
+                         nchain * ChainDof::NDOF, sim.grid));
+    PetscCall(SolverSetup(sim, true));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(GridAndParticles(sim, mem, nbody, nchain));
   PetscCall(SolverSetup(sim, false));
   // Step 0: monitor() also sees the initial state, where scenes may set an initial velocity field.
   PetscCall(sim.scene->monitor(sim));
