@@ -19,6 +19,7 @@
 #include <map>
 #include <petscviewerhdf5.h>
 #include <sstream>
+#include <type_traits>
 
 namespace pmpm {
 
@@ -409,18 +410,62 @@ PetscErrorCode CheckpointReadRankShare(MPI_Comm comm, PetscViewer v, const char 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
-  PetscViewer v;
-  const RunState &r = sim.run;
-  PetscFunctionBeginUser;
-  PetscCall(RegisterEvents());
-  PetscCall(PetscLogEventBegin(ev_write, 0, 0, 0, 0));
-  PetscCall(OutputPrepareDirectory(sim));
-  const std::string name = CheckpointName(sim), path = sim.set.output_dir + "/" + name;
-  PetscCall(PetscViewerHDF5Open(sim.comm, (path + ".tmp").c_str(), FILE_MODE_WRITE, &v));
+namespace {
 
-  // the run: identity, the stage loop's position, RunState
-  const char *R = "/run";
+// The two ends of the structs' checkpoint_fields visitors: each field an attribute of `group`,
+// written (bool as 0/1, an enum as its number) ...
+struct AttrWriter {
+  PetscViewer v;
+  const char *group;
+  PetscErrorCode operator()(const char *name, double &x) const {
+    return PutReal(v, group, name, x);
+  }
+  PetscErrorCode operator()(const char *name, PetscInt &x) const {
+    return PutInt(v, group, name, x);
+  }
+  PetscErrorCode operator()(const char *name, bool &x) const {
+    return PutInt(v, group, name, x ? 1 : 0);
+  }
+  template <class E, std::enable_if_t<std::is_enum<E>::value, int> = 0>
+  PetscErrorCode operator()(const char *name, E &x) const {
+    return PutInt(v, group, name, static_cast<PetscInt>(x));
+  }
+};
+// ... and read back (a missing one is a damaged checkpoint).
+struct AttrReader {
+  PetscViewer v;
+  const char *group;
+  const std::string &file;
+  PetscErrorCode operator()(const char *name, double &x) const {
+    return GetReal(v, group, name, file, &x);
+  }
+  PetscErrorCode operator()(const char *name, PetscInt &x) const {
+    return GetInt(v, group, name, file, &x);
+  }
+  PetscErrorCode operator()(const char *name, bool &x) const {
+    PetscInt i = 0;
+    PetscFunctionBeginUser;
+    PetscCall(GetInt(v, group, name, file, &i));
+    x = i != 0;
+    PetscFunctionReturn(0);
+  }
+  template <class E, std::enable_if_t<std::is_enum<E>::value, int> = 0>
+  PetscErrorCode operator()(const char *name, E &x) const {
+    PetscInt i = 0;
+    PetscFunctionBeginUser;
+    PetscCall(GetInt(v, group, name, file, &i));
+    x = static_cast<E>(i);
+    PetscFunctionReturn(0);
+  }
+};
+
+constexpr const char *kRun = "/run";
+
+// /run: the run's identity, the stage loop's position, the checkpointed scalars (the structs'
+// checkpoint_fields) and the solver's state.
+PetscErrorCode WriteRun(Simulation &sim, PetscViewer v, bool in_stage) {
+  const char *R = kRun;
+  PetscFunctionBeginUser;
   PetscCall(PutString(v, R, "format", kFormat));
   PetscCall(PutString(v, R, "scene", sim.set.scene));
   OptionMap model;
@@ -434,31 +479,20 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   PetscCall(PutInt(v, R, "ranks", sim.size));
   PetscCall(PutInt(v, R, "stage", in_stage ? sim.stage : sim.stage + 1));
   PetscCall(PutInt(v, R, "in_stage", in_stage ? 1 : 0));
-  PetscCall(PutInt(v, R, "stage_ramp", sim.stage_ramp));
-  PetscCall(PutReal(v, R, "stage_shrink", sim.stage_shrink));
-  PetscCall(PutInt(v, R, "step", r.step));
-  PetscCall(PutInt(v, R, "stage_step", r.stage_step));
-  PetscCall(PutReal(v, R, "time", r.time));
-  PetscCall(PutReal(v, R, "dt", r.dt));
-  PetscCall(PutReal(v, R, "max_speed", r.max_speed));
-  PetscCall(PutReal(v, R, "ratio", r.ratio));
-  PetscCall(PutReal(v, R, "kinetic", r.kinetic));
-  PetscCall(PutInt(v, R, "converged", r.converged ? 1 : 0));
-  PetscCall(PutInt(v, R, "all_converged", r.all_converged ? 1 : 0));
-  PetscCall(PutReal(v, R, "wall_seconds", r.wall_seconds));
-  PetscCall(PutReal(v, R, "stage_seconds", r.stage_seconds));
-  PetscCall(PutInt(v, R, "migrations", r.migrations));
-  PetscCall(PutInt(v, R, "rebalances", sim.balance.rebalances));
-  PetscCall(PutReal(v, R, "rebalance_before", sim.balance.last_before));
-  PetscCall(PutReal(v, R, "rebalance_after", sim.balance.last_after));
+  const AttrWriter put{v, R};
+  PetscCall(sim.checkpoint_fields(put));
   PetscCall(sim.solver->checkpoint_write(sim, v, R)); // relaxation's damping and energy budget
-  PetscCall(PutReal(v, R, "iface_impulse_compression", sim.iface_impulse[0]));
-  PetscCall(PutReal(v, R, "iface_impulse_tension", sim.iface_impulse[1]));
-  PetscCall(PutReal(v, R, "contact_impulse_compression", sim.contact_impulse[0]));
-  PetscCall(PutReal(v, R, "contact_impulse_tension", sim.contact_impulse[1]));
+  PetscCall(sim.checkpoint_totals(put));
+  PetscFunctionReturn(0);
+}
+
+// /run's arrays: the last step's stats, the capped stages, the loads, the partition.
+PetscErrorCode WriteRunArrays(Simulation &sim, PetscViewer v) {
   const InterfaceStats &is = sim.iface_stats;
   const ContactStats &cs = sim.contact_stats;
-  PetscCall(PetscViewerHDF5PushGroup(v, R));
+  const RunState &r = sim.run;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(v, kRun));
   PetscCall(CheckpointWriteArray(v, "iface_stats",
                                  {is.contact_nodes, is.slip_nodes, is.compression, is.tension}));
   std::vector<double> c = {cs.contact_nodes, cs.slip_nodes, cs.separated_nodes, cs.compression,
@@ -477,13 +511,17 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   PetscCall(BalancePartition(sim, part));
   PetscCall(CheckpointWriteArray(v, "partition", std::vector<double>(part.begin(), part.end())));
   PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscFunctionReturn(0);
+}
 
-  // particles: each field as the ranks' blocks in rank order, and the block sizes
+// /particles: each field as the ranks' blocks in rank order, and the block sizes.
+PetscErrorCode WriteParticles(Simulation &sim, PetscViewer v) {
   PetscInt n;
+  hid_t fid, gid;
+  PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
   PetscCall(PetscViewerHDF5PushGroup(v, "/particles"));
   PetscCall(WritePerRank(sim.comm, v, "counts", static_cast<double>(n)));
-  hid_t fid, gid;
   PetscCall(PetscViewerHDF5OpenGroup(v, nullptr, &fid, &gid));
   for (const ParticleFieldInfo &f : ParticlesFieldList(sim.parts)) {
     void *data;
@@ -504,20 +542,19 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   }
   H5Gclose(gid);
   PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscFunctionReturn(0);
+}
 
-  // chains (every rank holds them alike: rank 0's are written)
+// /chains/<k> (every rank holds them alike: rank 0's are written).
+PetscErrorCode WriteChains(Simulation &sim, PetscViewer v) {
+  PetscFunctionBeginUser;
   for (size_t k = 0; k < sim.chains.size(); ++k) {
-    const Chain &ch = sim.chains[k];
+    Chain &ch = sim.chains[k];
     char g[32];
     snprintf(g, sizeof(g), "/chains/%d", (int)k);
     PetscCall(PutString(v, g, "name", ch.name));
     PetscCall(PutInt(v, g, "points", ch.n));
-    PetscCall(PutInt(v, g, "top_type", static_cast<PetscInt>(ch.top.type)));
-    PetscCall(PutInt(v, g, "bottom_type", static_cast<PetscInt>(ch.bottom.type)));
-    PetscCall(PutReal(v, g, "top_mu", ch.top.mu));
-    PetscCall(PutReal(v, g, "bottom_mu", ch.bottom.mu));
-    PetscCall(PutReal(v, g, "line_mass", ch.line_mass));
-    PetscCall(PutReal(v, g, "friction_force", ch.friction_force));
+    PetscCall(ch.checkpoint_fields(AttrWriter{v, g}));
     PetscCall(PetscViewerHDF5PushGroup(v, g));
     for (const ChainArrays &a : kChainArrays)
       PetscCall(CheckpointWriteArray(v, a.name, ch.*(a.member)));
@@ -528,25 +565,306 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
         {ch.reaction[0][0], ch.reaction[0][1], ch.reaction[1][0], ch.reaction[1][1]}));
     PetscCall(PetscViewerHDF5PopGroup(v));
   }
+  PetscFunctionReturn(0);
+}
 
-  // the time series listed so far (rank 0's list; one attribute per frame)
-  {
-    std::vector<std::string> &frames = OutputSeriesFrames();
-    PetscInt nf = sim.rank == 0 ? static_cast<PetscInt>(frames.size()) : 0;
-    PetscCallMPI(MPI_Bcast(&nf, 1, MPIU_INT, 0, sim.comm));
-    PetscCall(PutInt(v, "/output", "series_frames", nf));
-    for (PetscInt i = 0; i < nf; ++i) {
-      std::string s = sim.rank == 0 ? frames[i] : std::string();
-      int len = static_cast<int>(s.size());
-      PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, 0, sim.comm));
-      s.resize(static_cast<size_t>(len));
-      PetscCallMPI(MPI_Bcast(&s[0], len, MPI_CHAR, 0, sim.comm));
-      char a[32];
-      snprintf(a, sizeof(a), "frame_%d", (int)i);
-      PetscCall(PutString(v, "/output", a, s));
-    }
+// /output: the time series listed so far (rank 0's list; one attribute per frame).
+PetscErrorCode WriteFrames(Simulation &sim, PetscViewer v) {
+  std::vector<std::string> &frames = OutputSeriesFrames();
+  PetscFunctionBeginUser;
+  PetscInt nf = sim.rank == 0 ? static_cast<PetscInt>(frames.size()) : 0;
+  PetscCallMPI(MPI_Bcast(&nf, 1, MPIU_INT, 0, sim.comm));
+  PetscCall(PutInt(v, "/output", "series_frames", nf));
+  for (PetscInt i = 0; i < nf; ++i) {
+    std::string s = sim.rank == 0 ? frames[i] : std::string();
+    int len = static_cast<int>(s.size());
+    PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, 0, sim.comm));
+    s.resize(static_cast<size_t>(len));
+    PetscCallMPI(MPI_Bcast(&s[0], len, MPI_CHAR, 0, sim.comm));
+    char a[32];
+    snprintf(a, sizeof(a), "frame_%d", (int)i);
+    PetscCall(PutString(v, "/output", a, s));
   }
+  PetscFunctionReturn(0);
+}
 
+// The checkpoint's identity: format, scene, and the presence of the run's size attributes; the
+// rank count that wrote it.
+PetscErrorCode ReadIdentity(Simulation &sim, PetscViewer v, const std::string &file,
+                            PetscInt *ranks) {
+  const char *R = kRun, *F = file.c_str();
+  std::string fmt, scene;
+  double h;
+  PetscInt nx, ny, np0, nch;
+  PetscFunctionBeginUser;
+  PetscCall(GetString(v, R, "format", file, fmt));
+  PetscCheck(fmt == kFormat, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-restart %s: checkpoint format \"%s\", this pmpm reads \"%s\"", F, fmt.c_str(),
+             kFormat);
+  PetscCall(GetString(v, R, "scene", file, scene));
+  PetscCall(GetReal(v, R, "cell_size", file, &h));
+  PetscCall(GetInt(v, R, "ncell_x", file, &nx));
+  PetscCall(GetInt(v, R, "ncell_y", file, &ny));
+  PetscCall(GetInt(v, R, "particles_setup", file, &np0));
+  PetscCall(GetInt(v, R, "chains", file, &nch));
+  PetscCall(GetInt(v, R, "ranks", file, ranks));
+  PetscCheck(scene == sim.set.scene, sim.comm, PETSC_ERR_USER_INPUT,
+             "-restart %s: the checkpoint is of scene %s, this run is scene %s (restart with the "
+             "options files of the run that wrote it)",
+             F, scene.c_str(), sim.set.scene.c_str());
+  PetscFunctionReturn(0);
+}
+
+// The model it resumes: the same options but run control (RunControl).
+PetscErrorCode CheckModelOptions(Simulation &sim, PetscViewer v, const std::string &file) {
+  const char *F = file.c_str();
+  std::string stored;
+  OptionMap now;
+  PetscFunctionBeginUser;
+  PetscCall(GetString(v, kRun, "model_options", file, stored));
+  const OptionMap was = Deserialise(stored);
+  PetscCall(ModelOptions(now));
+  const char *allowed = "a restart resumes the checkpoint's model; only run control (-max_steps, "
+                        "-output_*, -checkpoint_*, -progress_interval, -quiet, -memory_limit, "
+                        "-balance*, -da_processors_*, -tol, -damping*, -fire_*, "
+                        "-relax_history*) may differ";
+  auto shown = [](const std::pair<std::string, std::string> &o) {
+    return "-" + o.first + (o.second.empty() ? "" : " " + o.second);
+  };
+  for (const auto &kv : now) {
+    const auto it = was.find(kv.first);
+    PetscCheck(it != was.end(), sim.comm, PETSC_ERR_USER_INPUT,
+               "-restart %s: %s is given here, not to the run that wrote the checkpoint; %s", F,
+               shown(kv.second).c_str(), allowed);
+    PetscCheck(SameValue(kv.second.second, it->second.second), sim.comm, PETSC_ERR_USER_INPUT,
+               "-restart %s: -%s changed from %s (the run that wrote the checkpoint) to %s; %s", F,
+               kv.second.first.c_str(), it->second.second.c_str(), kv.second.second.c_str(),
+               allowed);
+  }
+  for (const auto &kv : was) // (a checkpoint may predate an option's counting as run control)
+    PetscCheck(now.count(kv.first) || RunControl(kv.first), sim.comm, PETSC_ERR_USER_INPUT,
+               "-restart %s: %s was given to the run that wrote the checkpoint, not here; %s", F,
+               shown(kv.second).c_str(), allowed);
+  PetscFunctionReturn(0);
+}
+
+// /run's stage loop position, the checkpointed scalars and the solver's state.
+PetscErrorCode ReadRun(Simulation &sim, PetscViewer v, const std::string &file, PetscInt ranks,
+                       PetscInt *stage, PetscInt *in_stage) {
+  const char *R = kRun;
+  PetscFunctionBeginUser;
+  PetscCall(GetInt(v, R, "stage", file, stage));
+  PetscCall(GetInt(v, R, "in_stage", file, in_stage));
+  const PetscInt nstages = sim.scene->stages();
+  PetscCheck(*stage >= 0 && *stage <= nstages + 1, sim.comm, PETSC_ERR_USER_INPUT,
+             "-restart %s: the checkpoint is at stage %d, this run has stages 0..%d (restart with "
+             "the options files of the run that wrote it)",
+             file.c_str(), (int)*stage, (int)nstages);
+  const AttrReader get{v, R, file};
+  PetscCall(sim.checkpoint_fields(get));
+  PetscCall(sim.solver->checkpoint_read(sim, v, R, file, ranks));
+  PetscCall(sim.checkpoint_totals(get));
+  PetscFunctionReturn(0);
+}
+
+// /run's arrays: the last step's stats, the capped stages and the loads.
+PetscErrorCode ReadStatsLoads(Simulation &sim, PetscViewer v, const std::string &file) {
+  const char *F = file.c_str();
+  std::vector<double> is, cs, capped, loads;
+  PetscFunctionBeginUser;
+  PetscCall(CheckpointReadArray(v, "iface_stats", is));
+  PetscCall(CheckpointReadArray(v, "contact_stats", cs));
+  PetscCall(CheckpointReadArray(v, "capped_stages", capped));
+  sim.run.capped_stages.assign(capped.begin(), capped.end());
+  PetscCall(CheckpointReadArray(v, "loads", loads));
+  PetscCheck(loads.size() == 3 * DIM * sim.loads.size(), sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-restart %s: the checkpoint has %d loaded particles, these options give %d", F,
+             (int)(loads.size() / (3 * DIM)), (int)sim.loads.size());
+  for (size_t k = 0; k < sim.loads.size(); ++k)
+    for (int d = 0; d < DIM; ++d) {
+      sim.loads[k].traction[d] = loads[3 * DIM * k + d];
+      sim.loads[k].tface[d] = loads[3 * DIM * k + DIM + d];
+      sim.loads[k].lp[d] = loads[3 * DIM * k + 2 * DIM + d];
+    }
+  PetscCheck(is.size() == 4 && cs.size() == 5 + sim.chains.size(), sim.comm,
+             PETSC_ERR_FILE_UNEXPECTED, "-restart %s: damaged checkpoint (/run stats)", F);
+  sim.iface_stats = InterfaceStats{is[0], is[1], is[2], is[3]};
+  ContactStats &c = sim.contact_stats;
+  c.contact_nodes = cs[0];
+  c.slip_nodes = cs[1];
+  c.separated_nodes = cs[2];
+  c.compression = cs[3];
+  c.tension = cs[4];
+  c.friction.assign(cs.begin() + 5, cs.end());
+  PetscFunctionReturn(0);
+}
+
+// On the same rank count each rank takes back its own block of particles: the grid must be
+// partitioned as when the checkpoint was written (-balance run may have moved it since setup).
+PetscErrorCode ReadPartition(Simulation &sim, PetscViewer v, const std::string &file,
+                             PetscInt ranks) {
+  std::vector<double> saved;
+  std::vector<PetscInt> part;
+  PetscFunctionBeginUser;
+  PetscCall(CheckpointReadArray(v, "partition", saved));
+  PetscCall(BalancePartition(sim, part));
+  const std::vector<PetscInt> want(saved.begin(), saved.end());
+  if (ranks == sim.size && want != part) {
+    PetscCheck(want.size() >= 2 && (PetscInt)want.size() == 2 + want[0] + want[1] &&
+                   want[0] * want[1] == sim.size,
+               sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+               "-restart %s: damaged checkpoint (/run/partition)", file.c_str());
+    PetscCall(BalanceRebuildGrid(
+        sim, want[0], want[1], std::vector<PetscInt>(want.begin() + 2, want.begin() + 2 + want[0]),
+        std::vector<PetscInt>(want.begin() + 2 + want[0], want.end())));
+  }
+  PetscFunctionReturn(0);
+}
+
+// One swarm field of /particles into columns [off, off + bs) of this rank's nloc records of
+// width w.
+PetscErrorCode ReadParticleField(Simulation &sim, PetscViewer v, const std::string &file,
+                                 const ParticleFieldInfo &f, PetscInt total, PetscInt nloc,
+                                 PetscInt w, PetscInt off, std::vector<double> &rec) {
+  const char *F = file.c_str();
+  Vec x;
+  const double *a;
+  PetscInt N;
+  PetscFunctionBeginUser;
+  PetscCall(NeedDataset(v, f.name, file));
+  PetscCall(DatasetSize(v, f.name, &N));
+  PetscCheck(N == total * f.bs, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-restart %s: damaged checkpoint (/particles/%s holds %d values, its counts say "
+             "%d particles of %d)",
+             F, f.name, (int)N, (int)total, f.bs);
+  PetscCall(VecCreate(sim.comm, &x));
+  PetscCall(PetscObjectSetName((PetscObject)x, f.name));
+  PetscCall(VecSetSizes(x, nloc * f.bs, PETSC_DETERMINE));
+  PetscCall(VecSetType(x, VECSTANDARD));
+  PetscCall(VecLoad(x, v)); // PETSc checks the dataset's size against the counts
+  PetscCall(VecGetSize(x, &N));
+  PetscCheck(N == total * f.bs, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-restart %s: damaged checkpoint (/particles/%s)", F, f.name);
+  PetscCall(VecGetArrayRead(x, &a));
+  for (PetscInt p = 0; p < nloc; ++p)
+    for (PetscInt b = 0; b < f.bs; ++b) rec[p * w + off + b] = a[p * f.bs + b];
+  PetscCall(VecRestoreArrayRead(x, &a));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(0);
+}
+
+// /particles: this rank's own block on the same rank count (bit for bit), else an even split
+// sent on to the ranks owning the particles' cells.
+PetscErrorCode ReadParticles(Simulation &sim, PetscViewer v, const std::string &file,
+                             PetscInt ranks) {
+  const char *F = file.c_str();
+  std::vector<double> counts;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5PushGroup(v, "/particles"));
+  PetscCall(NeedDataset(v, "counts", file));
+  PetscCall(ReadAll(sim.comm, v, "counts", counts));
+  PetscCheck((PetscInt)counts.size() == ranks, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-restart %s: damaged checkpoint (/particles/counts)", F);
+  PetscInt total = 0;
+  for (double c : counts) total += static_cast<PetscInt>(c);
+  PetscInt nloc = 0;
+  if (ranks == sim.size)
+    nloc = static_cast<PetscInt>(counts[sim.rank]);
+  else
+    nloc = total / sim.size + (sim.rank < total % sim.size ? 1 : 0);
+  const std::vector<ParticleFieldInfo> fields = ParticlesFieldList(sim.parts);
+  PetscBool affine; // the APIC matrix: saved exactly when the run had -transfer apic
+  PetscCall(PetscViewerHDF5HasDataset(v, kAffineField, &affine));
+  PetscCheck(bool(affine) == sim.parts.affine, sim.comm, PETSC_ERR_USER_INPUT,
+             "-restart %s: the checkpoint was written with -transfer %s, this run has -transfer "
+             "%s: restart with the same -transfer",
+             F, affine ? "apic" : "flip", sim.parts.affine ? "apic" : "flip");
+  PetscInt w = 0;
+  for (const auto &f : fields) w += f.bs;
+  std::vector<double> rec(static_cast<size_t>(nloc * w)); // records: every field of a particle
+  PetscInt off = 0;
+  for (const auto &f : fields) {
+    PetscCall(ReadParticleField(sim, v, file, f, total, nloc, w, off, rec));
+    off += f.bs;
+  }
+  if (ranks != sim.size) PetscCall(RecordsRedistribute(sim.comm, sim.grid, w, rec));
+  PetscCall(ParticlesUnpack(sim.parts, rec));
+  PetscCall(SimulationIndexParticles(sim));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscFunctionReturn(0);
+}
+
+// /chains/<k>: the same chain (name, points), its scalars and its arrays.
+PetscErrorCode ReadChain(Simulation &sim, PetscViewer v, const std::string &file, size_t k) {
+  const char *F = file.c_str();
+  Chain &ch = sim.chains[k];
+  char g[32];
+  std::string cname;
+  PetscInt npts;
+  PetscFunctionBeginUser;
+  snprintf(g, sizeof(g), "/chains/%d", (int)k);
+  PetscCall(GetString(v, g, "name", file, cname));
+  PetscCall(GetInt(v, g, "points", file, &npts));
+  PetscCheck(cname == ch.name && npts == ch.n, sim.comm, PETSC_ERR_USER_INPUT,
+             "-restart %s: the checkpoint's chain %d is %s with %d points, this run's %s with "
+             "%d (restart with the options files of the run that wrote it)",
+             F, (int)k, cname.c_str(), (int)npts, ch.name.c_str(), ch.n);
+  PetscCall(ch.checkpoint_fields(AttrReader{v, g, file}));
+  PetscCall(PetscViewerHDF5PushGroup(v, g));
+  for (const ChainArrays &a : kChainArrays) {
+    std::vector<double> &dst = ch.*(a.member);
+    std::vector<double> src;
+    PetscCall(CheckpointReadArray(v, a.name, src));
+    PetscCheck(src.size() == dst.size(), sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+               "-restart %s: damaged checkpoint (chain %s, %s: %d values for %d)", F,
+               ch.name.c_str(), a.name, (int)src.size(), (int)dst.size());
+    dst = src;
+  }
+  std::vector<double> slack, reac;
+  PetscCall(CheckpointReadArray(v, "slack", slack));
+  PetscCall(CheckpointReadArray(v, "reaction", reac));
+  PetscCheck(slack.size() == ch.slack.size() && reac.size() == 4, sim.comm,
+             PETSC_ERR_FILE_UNEXPECTED, "-restart %s: damaged checkpoint (chain %s)", F,
+             ch.name.c_str());
+  for (size_t i = 0; i < slack.size(); ++i) ch.slack[i] = slack[i] != 0;
+  for (int e = 0; e < 2; ++e)
+    for (int d = 0; d < DIM; ++d) ch.reaction[e][d] = reac[e * DIM + d];
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscFunctionReturn(0);
+}
+
+// /output: the time-series frames listed so far.
+PetscErrorCode ReadFrames(Simulation &sim, PetscViewer v, const std::string &file) {
+  PetscInt nf;
+  PetscFunctionBeginUser;
+  PetscCall(GetInt(v, "/output", "series_frames", file, &nf));
+  std::vector<std::string> &frames = OutputSeriesFrames();
+  frames.clear();
+  for (PetscInt i = 0; i < nf; ++i) {
+    char a[32];
+    std::string s;
+    snprintf(a, sizeof(a), "frame_%d", (int)i);
+    PetscCall(GetString(v, "/output", a, file, s));
+    if (sim.rank == 0) frames.push_back(s);
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
+  PetscViewer v;
+  PetscFunctionBeginUser;
+  PetscCall(RegisterEvents());
+  PetscCall(PetscLogEventBegin(ev_write, 0, 0, 0, 0));
+  PetscCall(OutputPrepareDirectory(sim));
+  const std::string name = CheckpointName(sim), path = sim.set.output_dir + "/" + name;
+  PetscCall(PetscViewerHDF5Open(sim.comm, (path + ".tmp").c_str(), FILE_MODE_WRITE, &v));
+  PetscCall(WriteRun(sim, v, in_stage));
+  PetscCall(WriteRunArrays(sim, v));
+  PetscCall(WriteParticles(sim, v));
+  PetscCall(WriteChains(sim, v));
+  PetscCall(WriteFrames(sim, v));
   // the scene's own state
   PetscCall(PutString(v, "/scene", "name", sim.set.scene));
   PetscCall(PetscViewerHDF5PushGroup(v, "/scene"));
@@ -565,261 +883,23 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
 
 PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
   PetscViewer v;
-  RunState &r = sim.run;
-  const char *F = file.c_str();
+  PetscInt ranks, stage, in_stage;
   PetscFunctionBeginUser;
   PetscCall(RegisterEvents());
   PetscCall(PetscLogEventBegin(ev_read, 0, 0, 0, 0));
   PetscCall(CheckFile(sim.comm, sim.rank, file));
   g_reading = file;
-  PetscCall(PetscViewerHDF5Open(sim.comm, F, FILE_MODE_READ, &v));
-
-  // the same run? scene, cell size, grid, particles generated, chains
-  const char *R = "/run";
-  std::string fmt, scene;
-  double h;
-  PetscInt nx, ny, np0, nch, ranks;
-  PetscCall(GetString(v, R, "format", file, fmt));
-  PetscCheck(fmt == kFormat, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
-             "-restart %s: checkpoint format \"%s\", this pmpm reads \"%s\"", F, fmt.c_str(),
-             kFormat);
-  PetscCall(GetString(v, R, "scene", file, scene));
-  PetscCall(GetReal(v, R, "cell_size", file, &h));
-  PetscCall(GetInt(v, R, "ncell_x", file, &nx));
-  PetscCall(GetInt(v, R, "ncell_y", file, &ny));
-  PetscCall(GetInt(v, R, "particles_setup", file, &np0));
-  PetscCall(GetInt(v, R, "chains", file, &nch));
-  PetscCall(GetInt(v, R, "ranks", file, &ranks));
-  PetscCheck(scene == sim.set.scene, sim.comm, PETSC_ERR_USER_INPUT,
-             "-restart %s: the checkpoint is of scene %s, this run is scene %s (restart with the "
-             "options files of the run that wrote it)",
-             F, scene.c_str(), sim.set.scene.c_str());
-  {
-    // the model it resumes: the same options but run control (RunControl)
-    std::string stored;
-    PetscCall(GetString(v, R, "model_options", file, stored));
-    const OptionMap was = Deserialise(stored);
-    OptionMap now;
-    PetscCall(ModelOptions(now));
-    const char *allowed = "a restart resumes the checkpoint's model; only run control (-max_steps, "
-                          "-output_*, -checkpoint_*, -progress_interval, -quiet, -memory_limit, "
-                          "-balance*, -da_processors_*, -tol, -damping*, -fire_*, "
-                          "-relax_history*) may differ";
-    auto shown = [](const std::pair<std::string, std::string> &o) {
-      return "-" + o.first + (o.second.empty() ? "" : " " + o.second);
-    };
-    for (const auto &kv : now) {
-      const auto it = was.find(kv.first);
-      PetscCheck(it != was.end(), sim.comm, PETSC_ERR_USER_INPUT,
-                 "-restart %s: %s is given here, not to the run that wrote the checkpoint; %s", F,
-                 shown(kv.second).c_str(), allowed);
-      PetscCheck(SameValue(kv.second.second, it->second.second), sim.comm, PETSC_ERR_USER_INPUT,
-                 "-restart %s: -%s changed from %s (the run that wrote the checkpoint) to %s; %s",
-                 F, kv.second.first.c_str(), it->second.second.c_str(), kv.second.second.c_str(),
-                 allowed);
-    }
-    for (const auto &kv : was) // (a checkpoint may predate an option's counting as run control)
-      PetscCheck(now.count(kv.first) || RunControl(kv.first), sim.comm, PETSC_ERR_USER_INPUT,
-                 "-restart %s: %s was given to the run that wrote the checkpoint, not here; %s", F,
-                 shown(kv.second).c_str(), allowed);
-  }
-  PetscInt stage, in_stage, conv, allc;
-  PetscCall(GetInt(v, R, "stage", file, &stage));
-  PetscCall(GetInt(v, R, "in_stage", file, &in_stage));
-  const PetscInt nstages = sim.scene->stages();
-  PetscCheck(stage >= 0 && stage <= nstages + 1, sim.comm, PETSC_ERR_USER_INPUT,
-             "-restart %s: the checkpoint is at stage %d, this run has stages 0..%d (restart with "
-             "the options files of the run that wrote it)",
-             F, (int)stage, (int)nstages);
-  PetscCall(GetInt(v, R, "stage_ramp", file, &sim.stage_ramp));
-  PetscCall(GetReal(v, R, "stage_shrink", file, &sim.stage_shrink));
-  PetscCall(GetInt(v, R, "step", file, &r.step));
-  PetscCall(GetInt(v, R, "stage_step", file, &r.stage_step));
-  PetscCall(GetReal(v, R, "time", file, &r.time));
-  PetscCall(GetReal(v, R, "dt", file, &r.dt));
-  PetscCall(GetReal(v, R, "max_speed", file, &r.max_speed));
-  PetscCall(GetReal(v, R, "ratio", file, &r.ratio));
-  PetscCall(GetReal(v, R, "kinetic", file, &r.kinetic));
-  PetscCall(GetInt(v, R, "converged", file, &conv));
-  PetscCall(GetInt(v, R, "all_converged", file, &allc));
-  r.converged = conv != 0;
-  r.all_converged = allc != 0;
-  PetscCall(GetReal(v, R, "wall_seconds", file, &r.wall_seconds));
-  PetscCall(GetReal(v, R, "stage_seconds", file, &r.stage_seconds));
-  PetscCall(GetInt(v, R, "migrations", file, &r.migrations));
-  PetscCall(GetInt(v, R, "rebalances", file, &sim.balance.rebalances));
-  PetscCall(GetReal(v, R, "rebalance_before", file, &sim.balance.last_before));
-  PetscCall(GetReal(v, R, "rebalance_after", file, &sim.balance.last_after));
-  PetscCall(sim.solver->checkpoint_read(sim, v, R, file, ranks));
-  PetscCall(GetReal(v, R, "iface_impulse_compression", file, &sim.iface_impulse[0]));
-  PetscCall(GetReal(v, R, "iface_impulse_tension", file, &sim.iface_impulse[1]));
-  PetscCall(GetReal(v, R, "contact_impulse_compression", file, &sim.contact_impulse[0]));
-  PetscCall(GetReal(v, R, "contact_impulse_tension", file, &sim.contact_impulse[1]));
-  PetscCall(PetscViewerHDF5PushGroup(v, R));
-  {
-    std::vector<double> is, cs;
-    PetscCall(CheckpointReadArray(v, "iface_stats", is));
-    PetscCall(CheckpointReadArray(v, "contact_stats", cs));
-    std::vector<double> capped;
-    PetscCall(CheckpointReadArray(v, "capped_stages", capped));
-    r.capped_stages.assign(capped.begin(), capped.end());
-    std::vector<double> loads;
-    PetscCall(CheckpointReadArray(v, "loads", loads));
-    PetscCheck(loads.size() == 3 * DIM * sim.loads.size(), sim.comm, PETSC_ERR_FILE_UNEXPECTED,
-               "-restart %s: the checkpoint has %d loaded particles, these options give %d", F,
-               (int)(loads.size() / (3 * DIM)), (int)sim.loads.size());
-    for (size_t k = 0; k < sim.loads.size(); ++k)
-      for (int d = 0; d < DIM; ++d) {
-        sim.loads[k].traction[d] = loads[3 * DIM * k + d];
-        sim.loads[k].tface[d] = loads[3 * DIM * k + DIM + d];
-        sim.loads[k].lp[d] = loads[3 * DIM * k + 2 * DIM + d];
-      }
-    PetscCheck(is.size() == 4 && cs.size() == 5 + sim.chains.size(), sim.comm,
-               PETSC_ERR_FILE_UNEXPECTED, "-restart %s: damaged checkpoint (/run stats)", F);
-    sim.iface_stats = InterfaceStats{is[0], is[1], is[2], is[3]};
-    ContactStats &c = sim.contact_stats;
-    c.contact_nodes = cs[0];
-    c.slip_nodes = cs[1];
-    c.separated_nodes = cs[2];
-    c.compression = cs[3];
-    c.tension = cs[4];
-    c.friction.assign(cs.begin() + 5, cs.end());
-    // on the same rank count each rank takes back its own block of particles: the grid must be
-    // partitioned as when the checkpoint was written (-balance run may have moved it since setup)
-    std::vector<double> saved;
-    std::vector<PetscInt> part;
-    PetscCall(CheckpointReadArray(v, "partition", saved));
-    PetscCall(BalancePartition(sim, part));
-    const std::vector<PetscInt> want(saved.begin(), saved.end());
-    if (ranks == sim.size && want != part) {
-      PetscCheck(want.size() >= 2 && (PetscInt)want.size() == 2 + want[0] + want[1] &&
-                     want[0] * want[1] == sim.size,
-                 sim.comm, PETSC_ERR_FILE_UNEXPECTED,
-                 "-restart %s: damaged checkpoint (/run/partition)", F);
-      PetscCall(
-          BalanceRebuildGrid(sim, want[0], want[1],
-                             std::vector<PetscInt>(want.begin() + 2, want.begin() + 2 + want[0]),
-                             std::vector<PetscInt>(want.begin() + 2 + want[0], want.end())));
-    }
-  }
+  PetscCall(PetscViewerHDF5Open(sim.comm, file.c_str(), FILE_MODE_READ, &v));
+  PetscCall(ReadIdentity(sim, v, file, &ranks));
+  PetscCall(CheckModelOptions(sim, v, file));
+  PetscCall(ReadRun(sim, v, file, ranks, &stage, &in_stage));
+  PetscCall(PetscViewerHDF5PushGroup(v, kRun));
+  PetscCall(ReadStatsLoads(sim, v, file));
+  PetscCall(ReadPartition(sim, v, file, ranks));
   PetscCall(PetscViewerHDF5PopGroup(v));
-
-  // particles: this rank's own block on the same rank count (bit for bit), else an even split
-  // sent on to the ranks owning the particles' cells
-  PetscCall(PetscViewerHDF5PushGroup(v, "/particles"));
-  {
-    std::vector<double> counts;
-    PetscCall(NeedDataset(v, "counts", file));
-    PetscCall(ReadAll(sim.comm, v, "counts", counts));
-    PetscCheck((PetscInt)counts.size() == ranks, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
-               "-restart %s: damaged checkpoint (/particles/counts)", F);
-    PetscInt total = 0;
-    for (double c : counts) total += static_cast<PetscInt>(c);
-    PetscInt nloc = 0;
-    if (ranks == sim.size)
-      nloc = static_cast<PetscInt>(counts[sim.rank]);
-    else
-      nloc = total / sim.size + (sim.rank < total % sim.size ? 1 : 0);
-    const std::vector<ParticleFieldInfo> fields = ParticlesFieldList(sim.parts);
-    PetscBool affine; // the APIC matrix: saved exactly when the run had -transfer apic
-    PetscCall(PetscViewerHDF5HasDataset(v, kAffineField, &affine));
-    PetscCheck(bool(affine) == sim.parts.affine, sim.comm, PETSC_ERR_USER_INPUT,
-               "-restart %s: the checkpoint was written with -transfer %s, this run has -transfer "
-               "%s: restart with the same -transfer",
-               F, affine ? "apic" : "flip", sim.parts.affine ? "apic" : "flip");
-    PetscInt w = 0;
-    for (const auto &f : fields) w += f.bs;
-    std::vector<double> rec(static_cast<size_t>(nloc * w)); // records: every field of a particle
-    PetscInt off = 0;
-    for (const auto &f : fields) {
-      Vec x;
-      const double *a;
-      PetscInt N;
-      PetscCall(NeedDataset(v, f.name, file));
-      PetscCall(DatasetSize(v, f.name, &N));
-      PetscCheck(N == total * f.bs, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
-                 "-restart %s: damaged checkpoint (/particles/%s holds %d values, its counts say "
-                 "%d particles of %d)",
-                 F, f.name, (int)N, (int)total, f.bs);
-      PetscCall(VecCreate(sim.comm, &x));
-      PetscCall(PetscObjectSetName((PetscObject)x, f.name));
-      PetscCall(VecSetSizes(x, nloc * f.bs, PETSC_DETERMINE));
-      PetscCall(VecSetType(x, VECSTANDARD));
-      PetscCall(VecLoad(x, v)); // PETSc checks the dataset's size against the counts
-      PetscCall(VecGetSize(x, &N));
-      PetscCheck(N == total * f.bs, sim.comm, PETSC_ERR_FILE_UNEXPECTED,
-                 "-restart %s: damaged checkpoint (/particles/%s)", F, f.name);
-      PetscCall(VecGetArrayRead(x, &a));
-      for (PetscInt p = 0; p < nloc; ++p)
-        for (PetscInt b = 0; b < f.bs; ++b) rec[p * w + off + b] = a[p * f.bs + b];
-      PetscCall(VecRestoreArrayRead(x, &a));
-      PetscCall(VecDestroy(&x));
-      off += f.bs;
-    }
-    if (ranks != sim.size) PetscCall(RecordsRedistribute(sim.comm, sim.grid, w, rec));
-    PetscCall(ParticlesUnpack(sim.parts, rec));
-    PetscCall(SimulationIndexParticles(sim));
-  }
-  PetscCall(PetscViewerHDF5PopGroup(v));
-
-  // chains
-  for (size_t k = 0; k < sim.chains.size(); ++k) {
-    Chain &ch = sim.chains[k];
-    char g[32];
-    std::string cname;
-    PetscInt npts, tt, bt;
-    snprintf(g, sizeof(g), "/chains/%d", (int)k);
-    PetscCall(GetString(v, g, "name", file, cname));
-    PetscCall(GetInt(v, g, "points", file, &npts));
-    PetscCheck(cname == ch.name && npts == ch.n, sim.comm, PETSC_ERR_USER_INPUT,
-               "-restart %s: the checkpoint's chain %d is %s with %d points, this run's %s with "
-               "%d (restart with the options files of the run that wrote it)",
-               F, (int)k, cname.c_str(), (int)npts, ch.name.c_str(), ch.n);
-    PetscCall(GetInt(v, g, "top_type", file, &tt));
-    PetscCall(GetInt(v, g, "bottom_type", file, &bt));
-    ch.top.type = static_cast<FaceType>(tt);
-    ch.bottom.type = static_cast<FaceType>(bt);
-    PetscCall(GetReal(v, g, "top_mu", file, &ch.top.mu));
-    PetscCall(GetReal(v, g, "bottom_mu", file, &ch.bottom.mu));
-    PetscCall(GetReal(v, g, "line_mass", file, &ch.line_mass));
-    PetscCall(GetReal(v, g, "friction_force", file, &ch.friction_force));
-    PetscCall(PetscViewerHDF5PushGroup(v, g));
-    for (const ChainArrays &a : kChainArrays) {
-      std::vector<double> &dst = ch.*(a.member);
-      std::vector<double> src;
-      PetscCall(CheckpointReadArray(v, a.name, src));
-      PetscCheck(src.size() == dst.size(), sim.comm, PETSC_ERR_FILE_UNEXPECTED,
-                 "-restart %s: damaged checkpoint (chain %s, %s: %d values for %d)", F,
-                 ch.name.c_str(), a.name, (int)src.size(), (int)dst.size());
-      dst = src;
-    }
-    std::vector<double> slack, reac;
-    PetscCall(CheckpointReadArray(v, "slack", slack));
-    PetscCall(CheckpointReadArray(v, "reaction", reac));
-    PetscCheck(slack.size() == ch.slack.size() && reac.size() == 4, sim.comm,
-               PETSC_ERR_FILE_UNEXPECTED, "-restart %s: damaged checkpoint (chain %s)", F,
-               ch.name.c_str());
-    for (size_t i = 0; i < slack.size(); ++i) ch.slack[i] = slack[i] != 0;
-    for (int e = 0; e < 2; ++e)
-      for (int d = 0; d < DIM; ++d) ch.reaction[e][d] = reac[e * DIM + d];
-    PetscCall(PetscViewerHDF5PopGroup(v));
-  }
-
-  // the time-series frames listed so far
-  {
-    PetscInt nf;
-    PetscCall(GetInt(v, "/output", "series_frames", file, &nf));
-    std::vector<std::string> &frames = OutputSeriesFrames();
-    frames.clear();
-    for (PetscInt i = 0; i < nf; ++i) {
-      char a[32];
-      std::string s;
-      snprintf(a, sizeof(a), "frame_%d", (int)i);
-      PetscCall(GetString(v, "/output", a, file, s));
-      if (sim.rank == 0) frames.push_back(s);
-    }
-  }
-
+  PetscCall(ReadParticles(sim, v, file, ranks));
+  for (size_t k = 0; k < sim.chains.size(); ++k) PetscCall(ReadChain(sim, v, file, k));
+  PetscCall(ReadFrames(sim, v, file));
   // the scene's own state
   PetscCall(PetscViewerHDF5PushGroup(v, "/scene"));
   PetscCall(sim.scene->checkpoint_read(sim, v));
@@ -831,7 +911,8 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
   sim.resume_in_stage = in_stage != 0;
   if (!sim.set.quiet)
     PetscCall(PetscPrintf(sim.comm, "restart from %s: stage %d, step %d (written on %d rank%s)\n",
-                          F, (int)stage, (int)r.step, (int)ranks, ranks > 1 ? "s" : ""));
+                          file.c_str(), (int)stage, (int)sim.run.step, (int)ranks,
+                          ranks > 1 ? "s" : ""));
   PetscCall(PetscLogEventEnd(ev_read, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

@@ -13,12 +13,12 @@ namespace pmpm {
 
 namespace {
 
-PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
+// The options blocks' groups, in -help's order (PetscOptionsObject: the block's, for the
+// readers' macros). The run: scene, discretisation, step cap and output.
+PetscErrorCode RunOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, Settings &s) {
   char scene[64] = "", dir[PETSC_MAX_PATH_LEN] = "";
   PetscBool set = PETSC_FALSE;
-  PetscInt ng = DIM;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
   const std::string scenes = SceneList();
   PetscCall(PetscOptionsString("-scene", ("Scene: " + scenes).c_str(), nullptr, scene, scene,
                                sizeof(scene), &set));
@@ -44,15 +44,20 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PmpmCheckInput(!set || dir[0], comm, PETSC_ERR_USER_INPUT,
                  "-output_dir is empty: give a directory (default output/<scene>)");
   s.output_dir = set ? std::string(dir) : "output/" + s.scene;
-  PetscBool quiet = s.quiet ? PETSC_TRUE : PETSC_FALSE,
-            dynamic = s.dynamic ? PETSC_TRUE : PETSC_FALSE,
-            musl = s.musl ? PETSC_TRUE : PETSC_FALSE, fbar = s.fbar ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool quiet = s.quiet ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscOptionsBool("-quiet", "No progress lines", nullptr, quiet, &quiet, nullptr));
   s.quiet = quiet;
   PetscCall(PmpmOptionsInt("-output_every",
                            "Also write a particle time series every K steps (0: "
                            "final state only)",
                            nullptr, s.output_every, &s.output_every, nullptr));
+  PetscFunctionReturn(0);
+}
+
+// The relaxation: convergence, damping, history, load ramp.
+PetscErrorCode RelaxationOptions(PetscOptionItems *PetscOptionsObject, Settings &s) {
+  PetscBool set = PETSC_FALSE;
+  PetscFunctionBeginUser;
   PetscCall(PmpmOptionsReal("-tol", "Convergence: unbalanced-force ratio max|f|/mean|f_ext|, > 0",
                             nullptr, s.tol, &s.tol, nullptr));
   PetscCall(PmpmOptionsEnum("-damping",
@@ -86,6 +91,15 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                            nullptr, s.relax_history_every, &s.relax_history_every, nullptr));
   PetscCall(PmpmOptionsInt("-ramp_steps", "Load ramp length in steps (0: full load at once)",
                            nullptr, s.ramp_steps, &s.ramp_steps, nullptr));
+  PetscFunctionReturn(0);
+}
+
+// The method: transfers, inertia, gravity, dynamics, MUSL, F-bar.
+PetscErrorCode MethodOptions(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, Settings &s) {
+  PetscBool set = PETSC_FALSE, dynamic = s.dynamic ? PETSC_TRUE : PETSC_FALSE,
+            musl = s.musl ? PETSC_TRUE : PETSC_FALSE, fbar = s.fbar ? PETSC_TRUE : PETSC_FALSE;
+  PetscInt ng = DIM;
+  PetscFunctionBeginUser;
   PetscCall(PmpmOptionsReal("-pic", "PIC fraction of the particle velocity update, 0..1", nullptr,
                             s.pic, &s.pic, nullptr));
   PetscCall(PmpmOptionsEnum(
@@ -126,6 +140,14 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PmpmCheckInput(s.fbar || s.fbar_pressure == FbarPressure::Particle, comm, PETSC_ERR_USER_INPUT,
                  "-fbar_pressure cell acts on F-bar's groups: add -fbar, or set -fbar_pressure "
                  "particle to run without F-bar");
+  PetscFunctionReturn(0);
+}
+
+// Checkpoint and restart; *restart_given: -restart was given (perhaps empty).
+PetscErrorCode CheckpointOptions(PetscOptionItems *PetscOptionsObject, Settings &s,
+                                 PetscBool *restart_given) {
+  PetscBool &set = *restart_given;
+  PetscFunctionBeginUser;
   PetscBool stage_end = s.checkpoint_stage_end ? PETSC_TRUE : PETSC_FALSE;
   char restart[PETSC_MAX_PATH_LEN] = "";
   PetscCall(PmpmOptionsInt("-checkpoint_every",
@@ -142,6 +164,12 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                                "that wrote it; any rank count)",
                                nullptr, restart, restart, sizeof(restart), &set));
   s.restart = set ? std::string(restart) : "";
+  PetscFunctionReturn(0);
+}
+
+// The solver table's entry and the geometry.
+PetscErrorCode SolverOptions(PetscOptionItems *PetscOptionsObject, Settings &s) {
+  PetscFunctionBeginUser;
   PetscEnum solver = PetscEnum(0); // the table's index (the default: its first entry)
   for (size_t k = 0; k < Solvers().size(); ++k)
     if (s.solver == Solvers()[k].name) solver = PetscEnum(k);
@@ -154,8 +182,13 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
                             "-fbar)",
                             nullptr, GeometryNames, (PetscEnum)s.geometry, (PetscEnum *)&s.geometry,
                             nullptr));
-  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
 
+// The values read, checked (after the block: -help lists every option first).
+PetscErrorCode CheckSettings(MPI_Comm comm, Settings &s, PetscBool restart_given) {
+  const PetscBool set = restart_given;
+  PetscFunctionBeginUser;
   PmpmCheckInput(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
   if (!(s.h > 0)) s.h = 1; // -help without a cell size: the scenes' lengths in cells stay finite
   PmpmCheckInput(s.ppc >= 1 && s.ppc <= 8, comm, PETSC_ERR_ARG_OUTOFRANGE,
@@ -195,6 +228,20 @@ PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
   PmpmCheckInput(gn > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-gravity_dir must be non-zero");
   for (int d = 0; d < DIM; ++d) s.gdir[d] /= gn;
   if (s.dynamic) s.damping = Damping::None;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SettingsFromOptions(MPI_Comm comm, Settings &s) {
+  PetscBool restart_given = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "pmpm: quasi-static MPM (every scene)", nullptr);
+  PetscCall(RunOptions(PetscOptionsObject, comm, s));
+  PetscCall(RelaxationOptions(PetscOptionsObject, s));
+  PetscCall(MethodOptions(PetscOptionsObject, comm, s));
+  PetscCall(CheckpointOptions(PetscOptionsObject, s, &restart_given));
+  PetscCall(SolverOptions(PetscOptionsObject, s));
+  PetscOptionsEnd();
+  PetscCall(CheckSettings(comm, s, restart_given));
   PetscFunctionReturn(0);
 }
 
@@ -410,40 +457,20 @@ PetscErrorCode SolverSetup(Simulation &sim, bool help) {
     }
   PetscFunctionReturn(0);
 }
-} // namespace
-
-PetscErrorCode SimulationSetup(Simulation &sim) {
+// -help without a scene: the scenes and the material laws (the options of no scene follow).
+PetscErrorCode ListScenesAndLaws(MPI_Comm comm) {
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
-  PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
-  PetscCall(SettingsFromOptions(sim.comm, sim.set));
-  sim.solver = make_solver(sim.set.solver); // the scene's setup may ask it what it supports
-  PetscBool help = PETSC_FALSE; // -help lists the options and runs nothing: nothing to check
-  PetscCall(PetscOptionsHasHelp(nullptr, &help));
-  if (!help) PetscCall(CheckOutputDir(sim.comm, sim.set.output_dir));
-  MemoryCheck mem;
-  PetscCall(MemoryFromOptions(sim.comm, mem));
-  sim.scene = make_scene(sim.set.scene);
-  PetscCheck(sim.scene || (help && sim.set.scene.empty()), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-scene %s is unknown; allowed: %s", sim.set.scene.c_str(), SceneList().c_str());
-  if (!sim.scene) { // -help without a scene: the scenes, then the options of no scene
-    PetscCall(
-        PetscPrintf(sim.comm, "Scenes (-scene NAME; -scene NAME -help lists its options):\n"));
-    for (const SceneEntry &e : Scenes())
-      PetscCall(PetscPrintf(sim.comm, "  %-10s %s\n", e.name, e.description));
-    PetscCall(PetscPrintf(sim.comm, "Material laws (-mat_<name>_model LAW):\n"));
-    for (const MaterialLaw &l : MaterialLaws())
-      PetscCall(PetscPrintf(sim.comm, "  %-15s %s\n", l.name, l.description));
-  }
-  PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
-  PetscCall(PmpmOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
-                            sim.chain_spacing, &sim.chain_spacing, nullptr));
-  PetscOptionsEnd();
-  if (sim.scene) PetscCall(sim.scene->setup(sim));
-  PetscCall(BoundaryFromOptions(sim));
-  PetscCall(GeometryCheck(sim));
-  PetscCheck(!sim.mats.empty() || !sim.chain_specs.empty() || help, sim.comm, PETSC_ERR_PLIB,
-             "scene defined no material");
+  PetscCall(PetscPrintf(comm, "Scenes (-scene NAME; -scene NAME -help lists its options):\n"));
+  for (const SceneEntry &e : Scenes())
+    PetscCall(PetscPrintf(comm, "  %-10s %s\n", e.name, e.description));
+  PetscCall(PetscPrintf(comm, "Material laws (-mat_<name>_model LAW):\n"));
+  for (const MaterialLaw &l : MaterialLaws())
+    PetscCall(PetscPrintf(comm, "  %-15s %s\n", l.name, l.description));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckFbarDilatancy(const Simulation &sim) {
+  PetscFunctionBeginUser;
   // F-bar with the particles' own pressures is unstable under dilatant flow (the c-phi footing
   // heaves and flows at 0.8 of its capacity; README, "Anti-locking"): refused, not run.
   for (auto &m : sim.mats)
@@ -454,11 +481,15 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
         "-fbar_pressure cell: with each particle's own pressure F-bar is unstable under "
         "dilatant flow (docs/anti-locking.md)",
         m.name.c_str(), m.name.c_str());
+  PetscFunctionReturn(0);
+}
 
+// *cmax: the fastest material's wave speed (at the given or default densities).
+PetscErrorCode SetInertia(Simulation &sim, double *cmax) {
+  PetscFunctionBeginUser;
   // Inertia: either the given densities, or one wave speed for all materials (the fastest
   // physical one), which equalises the relaxation rate of stiff and soft layers. Loads come from
   // gamma only, so the equilibrium is unchanged.
-  double cmax = 0;
   for (auto &m : sim.mats) {
     if (sim.set.inertia == InertiaScaling::None) {
       PmpmCheckInput(m.density > 0, sim.comm, PETSC_ERR_USER_INPUT,
@@ -475,18 +506,22 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
         "(-cfl x -cell_size / wave speed); check -mat_%s_E and its density",
         m.name.c_str(), m.el.E, m.density, m.name.c_str(), m.name.c_str(), c, kMaxWaveSpeed,
         sim.set.cfl * sim.set.h / c, m.name.c_str());
-    cmax = std::fmax(cmax, c);
+    *cmax = std::fmax(*cmax, c);
   }
   sim.wave_modulus.clear();
   for (auto &m : sim.mats) {
     if (sim.set.inertia == InertiaScaling::WaveSpeed)
-      m.density = m.model->wave_modulus() / (cmax * cmax);
+      m.density = m.model->wave_modulus() / (*cmax * *cmax);
     sim.wave_modulus.push_back(m.model->wave_modulus());
   }
   sim.mat_idx.assign(sim.mats.size(), {});
+  PetscFunctionReturn(0);
+}
 
+// *type_set: -interface_type was given (the chains' faces default to it).
+PetscErrorCode InterfaceFromOptions(Simulation &sim, PetscBool *type_set) {
+  PetscFunctionBeginUser;
   // Interface between colour-1 particles and the rest (skipped entirely when bonded).
-  PetscBool type_set = PETSC_FALSE;
   PetscOptionsBegin(sim.comm, "interface_", "Interface of the colour-1 body (geomembrane)",
                     nullptr);
   PetscCall(PmpmOptionsEnum("-type",
@@ -494,7 +529,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
                             "section 3.2), contact (Bardenhagen multi-velocity friction); "
                             "for a chain, the default of -chain_<name>_interface (contact)",
                             nullptr, InterfaceTypeNames, (PetscEnum)sim.iface.type,
-                            (PetscEnum *)&sim.iface.type, &type_set));
+                            (PetscEnum *)&sim.iface.type, type_set));
   // each type's own normals unless asked otherwise: the paper's cells, Bardenhagen's gradient
   sim.iface.normals = sim.iface.type == InterfaceType::Contact ? InterfaceNormals::Particles
                                                                : InterfaceNormals::Cells;
@@ -523,7 +558,13 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
              InterfaceTypeNames[(int)sim.iface.type]);
   for (int d = 0; d < DIM; ++d) sim.iface.up[d] = -sim.set.gdir[d];
   for (int f = 0; f < 2 * DIM; ++f) sim.iface.face[f] = sim.face[f];
+  PetscFunctionReturn(0);
+}
 
+// The chains' options and the chains made from the scene's specs (cmax: the continuum's fastest
+// wave speed, for their inertia; under -help a chain's unchecked defaults may stop it).
+PetscErrorCode ChainsFromOptions(Simulation &sim, PetscBool help, PetscBool type_set, double cmax) {
+  PetscFunctionBeginUser;
   // Membrane chains: each a body between the material below and above it (chain.hpp).
   // chains follow -inertia_scaling unless told otherwise: a sheet given the continuum's wave
   // speed is heavy and nearly weightless, which relaxation does not mind but which floats off
@@ -593,21 +634,16 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   }
   sim.contact.tail_share = sim.iface.tail_share;
   for (int f = 0; f < 2 * DIM; ++f) sim.contact.face[f] = sim.face[f];
+  PetscFunctionReturn(0);
+}
 
-  PetscCall(BalanceFromOptions(sim.comm, sim.balance));
-  if (help) { // -help: the grid's and Newton's options need a grid, whatever box the scene's
-    // (unchecked) defaults give; no particles
-    for (int d = 0; d < DIM; ++d)
-      sim.ncell[d] = std::min<PetscInt>(std::max<PetscInt>(sim.ncell[d], 4 * sim.size), 256);
-    PetscCall(GridCreate(sim.comm, sim.set.h > 0 ? sim.set.h : 1.0, sim.origin, sim.ncell, nbody,
-                         nchain * ChainDof::NDOF, sim.grid));
-    PetscCall(SolverSetup(sim, true));
-    PetscFunctionReturn(0);
-  }
+// The grid (its memory checked first), the particles the scene generates (balanced), their
+// tractions, weights, bodies and loads (not under -help).
+PetscErrorCode GridAndParticles(Simulation &sim, const MemoryCheck &mem, int nbody, int nchain) {
+  PetscFunctionBeginUser;
   const bool iface = sim.iface.type != InterfaceType::Bonded && nchain == 0;
   PetscCall(CheckProcessGrid(sim));
-  if (!help)
-    PetscCall(CheckMemoryGrid(sim, mem, nbody * GridDof::NDOF + nchain * ChainDof::NDOF, iface));
+  PetscCall(CheckMemoryGrid(sim, mem, nbody * GridDof::NDOF + nchain * ChainDof::NDOF, iface));
   PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody, nchain * ChainDof::NDOF,
                        sim.grid));
   if (iface) PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
@@ -616,7 +652,7 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   ParticleList init;
   PetscCall(sim.scene->generate(sim, init));
   PetscCall(BalanceSetup(sim, init)); // may recreate the grid and generate init again
-  if (!help) PetscCall(CheckMemoryParticles(sim, mem, (PetscInt)init.size()));
+  PetscCall(CheckMemoryParticles(sim, mem, (PetscInt)init.size()));
   PetscCall(ApplyFaceTractions(sim, init));
   PetscCall(GeometryWeight(sim, init));
   if (nchain > 0) AssignBodies(sim, init);
@@ -634,6 +670,58 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   sim.particles_setup = n;
   PetscCheck(n > 0 || nchain > 0, sim.comm, PETSC_ERR_USER_INPUT,
              "the scene produced no particles: check the geometry options against -cell_size");
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode SimulationSetup(Simulation &sim) {
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
+  PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
+  PetscCall(SettingsFromOptions(sim.comm, sim.set));
+  sim.solver = make_solver(sim.set.solver); // the scene's setup may ask it what it supports
+  PetscBool help = PETSC_FALSE; // -help lists the options and runs nothing: nothing to check
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  if (!help) PetscCall(CheckOutputDir(sim.comm, sim.set.output_dir));
+  MemoryCheck mem;
+  PetscCall(MemoryFromOptions(sim.comm, mem));
+  sim.scene = make_scene(sim.set.scene);
+  PetscCheck(sim.scene || (help && sim.set.scene.empty()), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-scene %s is unknown; allowed: %s", sim.set.scene.c_str(), SceneList().c_str());
+  if (!sim.scene) PetscCall(ListScenesAndLaws(sim.comm)); // -help without a scene
+  PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
+  PetscCall(PmpmOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
+                            sim.chain_spacing, &sim.chain_spacing, nullptr));
+  PetscOptionsEnd();
+  if (sim.scene) PetscCall(sim.scene->setup(sim));
+  PetscCall(BoundaryFromOptions(sim));
+  PetscCall(GeometryCheck(sim));
+  PetscCheck(!sim.mats.empty() || !sim.chain_specs.empty() || help, sim.comm, PETSC_ERR_PLIB,
+             "scene defined no material");
+  PetscCall(CheckFbarDilatancy(sim));
+
+  double cmax = 0; // the fastest material's wave speed
+  PetscCall(SetInertia(sim, &cmax));
+
+  PetscBool type_set = PETSC_FALSE; // -interface_type given
+  PetscCall(InterfaceFromOptions(sim, &type_set));
+
+  PetscCall(ChainsFromOptions(sim, help, type_set, cmax));
+  const int nchain = static_cast<int>(sim.chains.size());
+  const int nbody = nchain > 0 ? 2 * nchain + 1 : 1;
+
+  PetscCall(BalanceFromOptions(sim.comm, sim.balance));
+  if (help) { // -help: the grid's and Newton's options need a grid, whatever box the scene's
+    // (unchecked) defaults give; no particles
+    for (int d = 0; d < DIM; ++d)
+      sim.ncell[d] = std::min<PetscInt>(std::max<PetscInt>(sim.ncell[d], 4 * sim.size), 256);
+    PetscCall(GridCreate(sim.comm, sim.set.h > 0 ? sim.set.h : 1.0, sim.origin, sim.ncell, nbody,
+                         nchain * ChainDof::NDOF, sim.grid));
+    PetscCall(SolverSetup(sim, true));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(GridAndParticles(sim, mem, nbody, nchain));
   PetscCall(SolverSetup(sim, false));
   // Step 0: monitor() also sees the initial state, where scenes may set an initial velocity field.
   PetscCall(sim.scene->monitor(sim));

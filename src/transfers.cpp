@@ -340,12 +340,90 @@ void grid_update(const GridView &G, const GridUpdateParams &prm, GridStats &st) 
 namespace {
 enum class G2PMode { Fused, Velocity, Kinematics };
 
-// One particle loop for the three G2P variants: gather from the nodes (velocity, acceleration,
-// velocity gradient), then the FLIP/PIC velocity update and/or the kinematics. Affine (APIC,
-// affine.hpp): the velocity is the grid's (PIC, no FLIP part) and B = sum_i w v_i (x_i - x_p)^T.
-// Axi (-geometry axisymmetric, geometry.hpp): the hoop strain increment dt v_r(x_p) / r_p and the
-// hoop stretch r / r0 (into prm.hoop, or into the fused stress update), the volume det(F) F_thth
-// V0.
+// What a particle gathers from its nodes, as sums into the caller's locals (scalars, not a
+// struct: the same registers and code as the loop written out): velocity vg, acceleration ag
+// (FLIP), velocity gradient L (row-major; eq. 20 with PMPM weights) and APIC's
+// B = sum_i w v_i (x_i - x_p)^T. row: a grid row's doubles, ND: a node's.
+template <class Shape, bool vel, bool kin, bool Affine>
+__attribute__((always_inline)) inline void
+g2p_gather(const Stencil<Shape> &S, PetscInt row, int ND, double &vg0, double &vg1, double &ag0,
+           double &ag1, double &L0, double &L1, double &L2, double &L3, double *Bn) {
+  for (int b = 0; b < S.ny; ++b) {
+    const double *r = S.node0 + b * row;
+    const double wy = S.wy[b], dwy = S.dwy[b];
+    for (int a = 0; a < S.nx; ++a) {
+      const double *node = r + a * ND;
+      const double w = S.wx[a] * wy;
+      const double nv0 = node[GridDof::P], nv1 = node[GridDof::P + 1];
+      vg0 += w * nv0;
+      vg1 += w * nv1;
+      if (vel && !Affine) {
+        ag0 += w * node[GridDof::F];
+        ag1 += w * node[GridDof::F + 1];
+      }
+      if (vel && Affine) {
+        const double wv0 = w * nv0, wv1 = w * nv1, rx = S.rx[a], ry = S.ry[b];
+        Bn[0] += wv0 * rx;
+        Bn[1] += wv0 * ry;
+        Bn[2] += wv1 * rx;
+        Bn[3] += wv1 * ry;
+      }
+      if (kin) {
+        const double gx = S.dwx[a] * wy, gy = S.wx[a] * dwy;
+        L0 += nv0 * gx;
+        L1 += nv0 * gy;
+        L2 += nv1 * gx;
+        L3 += nv1 * gy;
+      }
+    }
+  }
+}
+
+// Particle p's kinematics from the gathered sums: its position (eq. 5), L dt (into the fused
+// stress update when el, else into dudx), the hoop increment and stretch (Axi), F <- (I + L dt) F
+// and the volume; returns the volume ratio J.
+template <bool Axi>
+__attribute__((always_inline)) inline double
+g2p_deform(const ParticleView &P, PetscInt p, double *x, double vg0, double vg1, double L0,
+           double L1, double L2, double L3, double dt, const double *el, double *hoop,
+           double *dudx) {
+  const double dhoop = Axi ? dt * vg0 / x[0] : 0.0; // at the step's start, where L is taken
+  x[0] += dt * vg0;                                 // eq. 5
+  x[1] += dt * vg1;
+  double dul[DIM * DIM] = {L0 * dt, L1 * dt, L2 * dt, L3 * dt}, *F = P.F + p * DIM * DIM;
+  const double *du = dul;
+  if (el) { // the stress update fused (one pass over the particles, no dudx round trip)
+    const double *e = el + 2 * P.mat[p];
+    elastic_rate_update(e[0], e[1], du, du[0], du[3], dhoop, P.stress + p * NSTRESS);
+  } else
+    for (int k = 0; k < DIM * DIM; ++k) dudx[p * DIM * DIM + k] = dul[k];
+  const double Fhoop = Axi ? x[0] / P.x0[p * DIM] : 1.0;
+  if (Axi && hoop) {
+    hoop[2 * p] = dhoop;
+    hoop[2 * p + 1] = Fhoop;
+  }
+  // F <- (I + L dt) F
+  const double F0 = F[0], F1 = F[1], F2 = F[2], F3 = F[3];
+  F[0] = (1.0 + du[0]) * F0 + du[1] * F2;
+  F[1] = (1.0 + du[0]) * F1 + du[1] * F3;
+  F[2] = du[2] * F0 + (1.0 + du[3]) * F2;
+  F[3] = du[2] * F1 + (1.0 + du[3]) * F3;
+  const double J = Axi ? (F[0] * F[3] - F[1] * F[2]) * Fhoop : F[0] * F[3] - F[1] * F[2];
+  P.vol[p] = J * P.vol0[p];
+  return J;
+}
+
+// APIC's kinetic energy of particle p beyond the grid velocity's: its affine part, with the D_p
+// that B_p was just taken at (affine.hpp).
+template <class Shape>
+__attribute__((always_inline)) inline double g2p_affine_kinetic(const ParticleView &P, PetscInt p,
+                                                                const Stencil<Shape> &S) {
+  double D[DIM] = {0, 0};
+  for (int a = 0; a < S.nx; ++a) D[0] += S.wx[a] * S.rx[a] * S.rx[a];
+  for (int b = 0; b < S.ny; ++b) D[1] += S.wy[b] * S.ry[b] * S.ry[b];
+  return affine_kinetic(P.mass[p], P.B + p * DIM * DIM, D);
+}
+
 template <class Shape, G2PMode mode, bool Multi, bool Affine, bool Axi = false>
 void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, const Grid *grid,
              const G2PParams &prm, const double *wave_modulus, double *dudx, G2PStats *st) {
@@ -378,35 +456,7 @@ void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, co
     if (bodies) S.node0 += P.body[p] * GridDof::NDOF;
     double vg0 = 0, vg1 = 0, ag0 = 0, ag1 = 0, L0 = 0, L1 = 0, L2 = 0, L3 = 0;
     double Bn[DIM * DIM] = {0, 0, 0, 0};
-    for (int b = 0; b < S.ny; ++b) {
-      const double *r = S.node0 + b * row;
-      const double wy = S.wy[b], dwy = S.dwy[b];
-      for (int a = 0; a < S.nx; ++a) {
-        const double *node = r + a * ND;
-        const double w = S.wx[a] * wy;
-        const double nv0 = node[GridDof::P], nv1 = node[GridDof::P + 1];
-        vg0 += w * nv0;
-        vg1 += w * nv1;
-        if (vel && !Affine) {
-          ag0 += w * node[GridDof::F];
-          ag1 += w * node[GridDof::F + 1];
-        }
-        if (vel && Affine) {
-          const double wv0 = w * nv0, wv1 = w * nv1, rx = S.rx[a], ry = S.ry[b];
-          Bn[0] += wv0 * rx;
-          Bn[1] += wv0 * ry;
-          Bn[2] += wv1 * rx;
-          Bn[3] += wv1 * ry;
-        }
-        if (kin) { // velocity gradient, eq. 20 with PMPM weights
-          const double gx = S.dwx[a] * wy, gy = S.wx[a] * dwy;
-          L0 += nv0 * gx;
-          L1 += nv0 * gy;
-          L2 += nv1 * gx;
-          L3 += nv1 * gy;
-        }
-      }
-    }
+    g2p_gather<Shape, vel, kin, Affine>(S, row, ND, vg0, vg1, ag0, ag1, L0, L1, L2, L3, Bn);
     if (vel && Affine) { // APIC
       v[0] = vg0;
       v[1] = vg1;
@@ -416,44 +466,18 @@ void g2p_one(const ParticleView &P, const GridView &G0_, const GridView *G1_, co
       v[1] = (1.0 - pic) * (v[1] + dt * ag1) + pic * vg1;
     }
     if (!kin) continue;
-    const double dhoop = Axi ? dt * vg0 / x[0] : 0.0; // at the step's start, where L is taken
-    x[0] += dt * vg0;                                 // eq. 5
-    x[1] += dt * vg1;
-    double dul[DIM * DIM] = {L0 * dt, L1 * dt, L2 * dt, L3 * dt}, *F = P.F + p * DIM * DIM;
-    const double *du = dul;
-    if (el) { // the stress update fused (one pass over the particles, no dudx round trip)
-      const double *e = el + 2 * P.mat[p];
-      elastic_rate_update(e[0], e[1], du, du[0], du[3], dhoop, P.stress + p * NSTRESS);
-    } else
-      for (int k = 0; k < DIM * DIM; ++k) dudx[p * DIM * DIM + k] = dul[k];
-    const double Fhoop = Axi ? x[0] / P.x0[p * DIM] : 1.0;
-    if (Axi && hoop) {
-      hoop[2 * p] = dhoop;
-      hoop[2 * p + 1] = Fhoop;
-    }
-    // F <- (I + L dt) F
-    const double F0 = F[0], F1 = F[1], F2 = F[2], F3 = F[3];
-    F[0] = (1.0 + du[0]) * F0 + du[1] * F2;
-    F[1] = (1.0 + du[0]) * F1 + du[1] * F3;
-    F[2] = du[2] * F0 + (1.0 + du[3]) * F2;
-    F[3] = du[2] * F1 + (1.0 + du[3]) * F3;
-    const double J = Axi ? (F[0] * F[3] - F[1] * F[2]) * Fhoop : F[0] * F[3] - F[1] * F[2];
-    P.vol[p] = J * P.vol0[p];
+    const double J = g2p_deform<Axi>(P, p, x, vg0, vg1, L0, L1, L2, L3, dt, el, hoop, dudx);
     if (en) { // every particle, in order, as ElasticEnergy (relaxation.cpp)
       const double *c = en + 2 * P.mat[p];
       elastic += elastic_energy(c[0], c[1], P.vol[p], P.stress + p * NSTRESS);
     }
     const double speed2 = v[0] * v[0] + v[1] * v[1];
     kinetic += 0.5 * P.mass[p] * speed2;
-    if (Affine && vel) { // the affine part, with the D_p that B_p was just taken at
-      double D[DIM] = {0, 0};
-      for (int a = 0; a < S.nx; ++a) D[0] += S.wx[a] * S.rx[a] * S.rx[a];
-      for (int b = 0; b < S.ny; ++b) D[1] += S.wy[b] * S.ry[b] * S.ry[b];
-      kinetic += affine_kinetic(P.mass[p], P.B + p * DIM * DIM, D);
-    }
+    if (Affine && vel) kinetic += g2p_affine_kinetic(P, p, S);
     weight_power += P.weight[p] * (gd0 * v[0] + gd1 * v[1]);
     // Instability and escape checks, reported by the caller with the particle's id. The centre
-    // must stay on the grid (the ghosted DMDA has room for the support beyond it).
+    // must stay on the grid (the ghosted DMDA has room for the support beyond it). (Written out:
+    // as a helper, another branch layout cost 0.3 % of a run's instructions.)
     const char *what = nullptr;
     if (!(J > 0.0) || !std::isfinite(J))
       what = "non-positive or non-finite volume ratio J";

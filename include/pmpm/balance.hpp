@@ -36,6 +36,15 @@ struct Balance {
   double last_before = 1.0; // the imbalance before the last of them
   double last_after = 1.0;  // and after it
   double run_seconds = 0.0; // wall time of the run's checks and rebuilds
+
+  // The checkpointed fields (checkpoint.cpp, /run attributes): f(name, field) for each.
+  template <class F> PetscErrorCode checkpoint_fields(F &&f) {
+    PetscFunctionBeginUser;
+    PetscCall(f("rebalances", rebalances));
+    PetscCall(f("rebalance_before", last_before));
+    PetscCall(f("rebalance_after", last_after));
+    PetscFunctionReturn(0);
+  }
 };
 
 // Read -balance and -balance_gain (every run reads them).

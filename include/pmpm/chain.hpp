@@ -107,6 +107,19 @@ struct Chain {
   double reaction[2][DIM] = {{0, 0}, {0, 0}};
 
   double wave_speed() const { return std::sqrt(law.J / line_mass); }
+
+  // The checkpointed scalars (checkpoint.cpp, /chains/<k> attributes): f(name, field) for each;
+  // the evolving arrays are kChainArrays there.
+  template <class F> PetscErrorCode checkpoint_fields(F &&f) {
+    PetscFunctionBeginUser;
+    PetscCall(f("top_type", top.type));
+    PetscCall(f("bottom_type", bottom.type));
+    PetscCall(f("top_mu", top.mu));
+    PetscCall(f("bottom_mu", bottom.mu));
+    PetscCall(f("line_mass", line_mass));
+    PetscCall(f("friction_force", friction_force));
+    PetscFunctionReturn(0);
+  }
 };
 
 // The strain projection (-chain_strain_projection) at given positions x (DIM per point): segment

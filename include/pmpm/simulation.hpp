@@ -158,6 +158,26 @@ struct RunState {
   // Stages that ended at their step cap out of equilibrium (not a collapse the scene asked for,
   // nor a -dynamic run, which has no equilibrium to reach): no verdict from such a run.
   std::vector<int> capped_stages;
+
+  // The checkpointed scalars (checkpoint.cpp, /run attributes): f(name, field) for each. A new
+  // checkpointed field is one line here; capped_stages is an array of /run, the local_* and
+  // stop_stage are rebuilt by the next step.
+  template <class F> PetscErrorCode checkpoint_fields(F &&f) {
+    PetscFunctionBeginUser;
+    PetscCall(f("step", step));
+    PetscCall(f("stage_step", stage_step));
+    PetscCall(f("time", time));
+    PetscCall(f("dt", dt));
+    PetscCall(f("max_speed", max_speed));
+    PetscCall(f("ratio", ratio));
+    PetscCall(f("kinetic", kinetic));
+    PetscCall(f("converged", converged));
+    PetscCall(f("all_converged", all_converged));
+    PetscCall(f("wall_seconds", wall_seconds));
+    PetscCall(f("stage_seconds", stage_seconds));
+    PetscCall(f("migrations", migrations));
+    PetscFunctionReturn(0);
+  }
 };
 
 struct Simulation {
@@ -221,6 +241,26 @@ struct Simulation {
   // -solver's object (solver.hpp): made with the settings, set up after the particles,
   // destroyed with the run
   std::unique_ptr<EquilibriumSolver> solver;
+
+  // The checkpointed scalars of the run beside RunState's and Balance's (checkpoint.cpp, /run
+  // attributes): f(name, field) for each, before the solver's own state ...
+  template <class F> PetscErrorCode checkpoint_fields(F &&f) {
+    PetscFunctionBeginUser;
+    PetscCall(f("stage_ramp", stage_ramp));
+    PetscCall(f("stage_shrink", stage_shrink));
+    PetscCall(run.checkpoint_fields(f));
+    PetscCall(balance.checkpoint_fields(f));
+    PetscFunctionReturn(0);
+  }
+  // ... and after it.
+  template <class F> PetscErrorCode checkpoint_totals(F &&f) {
+    PetscFunctionBeginUser;
+    PetscCall(f("iface_impulse_compression", iface_impulse[0]));
+    PetscCall(f("iface_impulse_tension", iface_impulse[1]));
+    PetscCall(f("contact_impulse_compression", contact_impulse[0]));
+    PetscCall(f("contact_impulse_tension", contact_impulse[1]));
+    PetscFunctionReturn(0);
+  }
 };
 
 // Setup: options, scene, materials, grid, particles.

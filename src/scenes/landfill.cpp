@@ -65,20 +65,15 @@ class LandfillScene final : public Scene {
     }
   }
 
-  // Gather the membrane particles to rank 0 and reduce them to a mid-surface profile.
-  PetscErrorCode BuildProfile(Simulation &sim) {
+  // One row per membrane particle (x0 y0 x y strain_particle stress_axial volume0 kind=0) and
+  // per particle of the rows just above (kind 1) and below (kind 2) it, for the interface slip.
+  static constexpr int NF = 8;
+  PetscErrorCode MembraneRows(Simulation &sim, std::vector<double> &mine) const {
     ParticleView P;
     PetscFunctionBeginUser;
-    if (chain_) {
-      ChainProfile(sim);
-      PetscFunctionReturn(0);
-    }
-    constexpr int NF = 8; // x0 y0 x y strain_particle stress_axial volume0 kind
-    std::vector<double> mine;
     const double dx = sim.set.h / sim.set.ppc, ytop = Hw_ + t_, ybot = Hw_;
     PetscCall(ParticlesGetView(sim.parts, P));
     for (PetscInt p = 0; p < P.n; ++p) {
-      // the particle rows just above and below the membrane, for the interface slip
       const double y0 = P.x0[p * DIM + 1];
       if (P.mat[p] != MEMBRANE) {
         const double kind = (y0 > ytop && y0 < ytop + dx)   ? 1
@@ -102,20 +97,14 @@ class LandfillScene final : public Scene {
       mine.insert(mine.end(), row, row + NF);
     }
     PetscCall(ParticlesRestoreView(sim.parts, P));
-    std::vector<double> all;
-    PetscCall(GatherToRoot(sim.comm, mine, all));
-    const int total = static_cast<int>(all.size());
-    prof_.clear();
-    if (sim.rank != 0) PetscFunctionReturn(0);
-    // Columns of membrane particles share x0; the volume-weighted column average is the
-    // mid-surface point (the layers are symmetric about the mid-plane).
-    std::map<long, std::vector<const double *>> cols, above, below;
-    for (int k = 0; k < total; k += NF) {
-      const long key = std::lround(all[k] / (0.5 * dx));
-      (all[k + 7] == 0 ? cols : all[k + 7] == 1 ? above : below)[key].push_back(&all[k]);
-    }
-    // Slip: tangential (x) displacement of the membrane's outer particle rows relative to the
-    // neighbouring rows of soil (top) and waste (bottom), per column.
+    PetscFunctionReturn(0);
+  }
+
+  using Columns = std::map<long, std::vector<const double *>>; // rows by column (x0)
+
+  // Slip: tangential (x) displacement of the membrane's outer particle rows relative to the
+  // neighbouring rows of soil (top) and waste (bottom), per column; the largest of each.
+  void ProfileSlip(const Columns &cols, Columns &above, Columns &below) {
     auto ux_mean = [](const std::vector<const double *> &v) {
       double s = 0;
       for (const double *r : v) s += r[2] - r[0];
@@ -135,6 +124,12 @@ class LandfillScene final : public Scene {
       if (below.count(c.first))
         slip_bottom_ = std::fmax(slip_bottom_, std::fabs(ux_mean(bot) - ux_mean(below[c.first])));
     }
+  }
+
+  // The mid-surface points: each column's volume-weighted average (the layers are symmetric about
+  // the mid-plane), then the chain strain, each segment's current over initial length averaged
+  // onto its two ends.
+  void ProfileColumns(const Columns &cols) {
     for (auto &c : cols) {
       ProfilePoint q{};
       double wsum = 0;
@@ -152,7 +147,6 @@ class LandfillScene final : public Scene {
       q.strain_particle /= wsum, q.stress_axial /= wsum;
       prof_.push_back(q);
     }
-    // Chain strain: each segment's current over initial length, averaged onto its two ends.
     const size_t m = prof_.size();
     std::vector<double> seg(m > 0 ? m - 1 : 0);
     for (size_t k = 0; k + 1 < m; ++k) {
@@ -169,6 +163,30 @@ class LandfillScene final : public Scene {
       else
         prof_[k].strain_chain = 0.5 * (seg[k - 1] + seg[k]);
     }
+  }
+
+  // Gather the membrane particles to rank 0 and reduce them to a mid-surface profile.
+  PetscErrorCode BuildProfile(Simulation &sim) {
+    PetscFunctionBeginUser;
+    if (chain_) {
+      ChainProfile(sim);
+      PetscFunctionReturn(0);
+    }
+    std::vector<double> mine, all;
+    PetscCall(MembraneRows(sim, mine));
+    PetscCall(GatherToRoot(sim.comm, mine, all));
+    const int total = static_cast<int>(all.size());
+    prof_.clear();
+    if (sim.rank != 0) PetscFunctionReturn(0);
+    // columns of membrane particles (and of the rows beside them) share x0
+    const double dx = sim.set.h / sim.set.ppc;
+    Columns cols, above, below;
+    for (int k = 0; k < total; k += NF) {
+      const long key = std::lround(all[k] / (0.5 * dx));
+      (all[k + 7] == 0 ? cols : all[k + 7] == 1 ? above : below)[key].push_back(&all[k]);
+    }
+    ProfileSlip(cols, above, below);
+    ProfileColumns(cols);
     PetscFunctionReturn(0);
   }
 
