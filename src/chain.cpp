@@ -651,9 +651,23 @@ void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const C
       // compresses), contact separates it from the body above, and the point crept down at a rate
       // that falls with that share: the sinkhole's geostatic stage stalled at a ratio of 5e-4 for
       // 20,000 steps. Moving with the bodies at the node, it converges in 1,084 steps to 1e-4.
+      // A body on that side with only a tail share counts as none: it takes the common
+      // acceleration, so it holds nothing up either. Where a sheet turns over a convex corner
+      // just under a node row (the slope's crest), the row above has the cover soil, a sliver of
+      // the sheet and a tail of the waste; the sheet and the waste's tail, one block under the
+      // normal projection, separated from the soil and ran at the sheet's own f / m (45 mm/s
+      // against the crest's 0.3 mm/s), and that sliver of velocity, carried into the points, kept
+      // the crest creeping: the slope's stage 2 at h = 0.25 m stopped at its 30,000-step cap
+      // (ratio 1.8e-2); with this rule it converges in 3,588 steps
+      // (docs/benchmarks/relaxation_steps.md).
+      auto continuum_tail = [&](int q) { return ids[q] % 2 == 0 && m[q] < prm.tail_share * msum; };
       auto is_tail = [&](int q) {
-        if (ids[q] % 2 == 0) return m[q] < prm.tail_share * msum;
-        return (q == 0 || q == k - 1) && m[q] < prm.chain_tail_share * msum;
+        if (ids[q] % 2 == 0) return continuum_tail(q);
+        if (!(m[q] < prm.chain_tail_share * msum)) return false;
+        bool none_below = true, none_above = true; // nothing but continuum tails on that side
+        for (int r = 0; r < q; ++r) none_below = none_below && continuum_tail(r);
+        for (int r = q + 1; r < k; ++r) none_above = none_above && continuum_tail(r);
+        return none_below || none_above;
       };
       for (int q = 0; q < k; ++q) {
         const bool tail = is_tail(q);

@@ -585,7 +585,8 @@ PetscErrorCode ChainsFromOptions(Simulation &sim, PetscBool help, PetscBool type
                              nullptr, strain_projection, &strain_projection, nullptr));
   PetscCall(PmpmOptionsReal("-chain_tail_share",
                             "A sheet with less than this share of a node's mass and no body on "
-                            "one side of it there moves with the bodies at the node, 0 <= s < 0.5",
+                            "one side of it there (or only bodies below -interface_tail_share) "
+                            "moves with the bodies at the node, 0 <= s < 0.5",
                             nullptr, sim.contact.chain_tail_share, &sim.contact.chain_tail_share,
                             nullptr));
   PetscCall(PmpmOptionsReal("-chain_pic",

@@ -170,7 +170,8 @@ struct ContactParams {
   double dt = 0;
   double tail_share = 1e-3; // continuum body below this share of the node: common acceleration
   // A sheet below this share of the node with no body on one side of it there (the lowest or
-  // highest body at the node) moves with the bodies at the node (chain.cpp, contact_bodies).
+  // highest body at the node, bodies below tail_share not counted) moves with the bodies at the
+  // node (chain.cpp, contact_bodies).
   double chain_tail_share = 0.05;
   FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
 };
