@@ -147,20 +147,30 @@ PetscErrorCode FastestParticle(Simulation &sim, double info[4]) {
   PetscFunctionReturn(0);
 }
 
-// One -relax_history row: the node of the largest unbalanced force over the ranks (collective).
-PetscErrorCode HistoryRow(Simulation &sim, const RelaxationState &st, FILE *f, PetscInt k) {
-  const RunState &run = sim.run;
+// The largest unbalanced force over the ranks and the node it sits at (collective: one MAXLOC
+// reduction and a broadcast of the node from the rank that holds it).
+PetscErrorCode LargestUnbalanced(const Simulation &sim, double *value, double at[DIM]) {
   struct {
     double v;
     int rank;
-  } loc = {run.local_unbalanced, sim.rank}, glob;
-  double at[DIM] = {run.local_unbalanced_at[0], run.local_unbalanced_at[1]};
+  } loc = {sim.run.local_unbalanced, sim.rank}, glob;
   PetscFunctionBeginUser;
+  for (int d = 0; d < DIM; ++d) at[d] = sim.run.local_unbalanced_at[d];
   PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
   PetscCallMPI(MPI_Bcast(at, DIM, MPI_DOUBLE, glob.rank, sim.comm));
+  *value = glob.v;
+  PetscFunctionReturn(0);
+}
+
+// One -relax_history row: the node of the largest unbalanced force over the ranks (collective).
+PetscErrorCode HistoryRow(Simulation &sim, const RelaxationState &st, FILE *f, PetscInt k) {
+  const RunState &run = sim.run;
+  double largest, at[DIM];
+  PetscFunctionBeginUser;
+  PetscCall(LargestUnbalanced(sim, &largest, at));
   if (f)
     fprintf(f, "%d,%" PetscInt_FMT ",%.6e,%.6e,%" PetscInt_FMT ",%.6e,%.6g,%.6g\n", (int)sim.stage,
-            k, run.ratio, run.kinetic, st.kinetic_resets, glob.v, at[0], at[1]);
+            k, run.ratio, run.kinetic, st.kinetic_resets, largest, at[0], at[1]);
   if (f) fflush(f); // readable while the run goes on
   PetscFunctionReturn(0);
 }
@@ -180,14 +190,9 @@ void FormatSeconds(double s, char *buf, size_t n) {
 PetscErrorCode NotConverged(Simulation &sim, const char *tag, double ratio_half) {
   const Settings &s = sim.set;
   const RunState &run = sim.run;
-  struct {
-    double v;
-    int rank;
-  } loc = {run.local_unbalanced, sim.rank}, glob;
-  double at[DIM] = {run.local_unbalanced_at[0], run.local_unbalanced_at[1]};
+  double largest, at[DIM];
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
-  PetscCallMPI(MPI_Bcast(at, DIM, MPI_DOUBLE, glob.rank, sim.comm));
+  PetscCall(LargestUnbalanced(sim, &largest, at));
   // the trend over the second half: a ratio that hardly falls may be a mechanism (a creep at
   // constant rate, which more steps do not cure; docs/method.md, section 3)
   char trend[384] = "";
@@ -206,7 +211,8 @@ PetscErrorCode NotConverged(Simulation &sim, const char *tag, double ratio_half)
                         "unbalanced-force ratio %.3e > %g (%.2f s); the largest unbalanced "
                         "force (%.3g N/m) is at the node (%g, %g) m. Raise -max_steps or "
                         "-tol%s.%s\n",
-                        tag, s.max_steps, run.ratio, s.tol, run.stage_seconds, glob.v, at[0], at[1],
+                        tag, s.max_steps, run.ratio, s.tol, run.stage_seconds, largest, at[0],
+                        at[1],
                         sim.chains.empty() ? ""
                                            : "; at a membrane's node, the contact may be "
                                              "chattering (docs/limitations.md)",
