@@ -6,6 +6,7 @@
 // that make the waste subside (stages.cpp):
 //   stage 0        the geostatic state: gravity on, equilibrium; then the membranes are laid
 //                  unstrained where they are and displacements are measured from here
+//                  (-cover_geostatic 0: not laid, displacements from the start)
 //   shrink stages  an imposed volumetric shrinkage of a zone of waste (degradation.hpp), the
 //                  total split into equal stages
 //   void stages    a void opening in the waste under the cover: the waste particles in a
@@ -49,6 +50,19 @@ struct Membrane {
   std::string name, material, under; // the chain lies at the base of layer `under`
   int layer = 0;                     // index of `under` in the bottom-up list
   double thickness = 0;
+};
+
+// A zone of the waste with its own material (a soft pocket, a stiff inclusion): a rectangle in
+// x (the radius under -geometry axisymmetric, so a zone from 0 is a disc) and in depth below the
+// waste surface, the depth measured at each particle's column, so a zone follows the surface.
+struct Zone {
+  std::string name, material;
+  double x_lo = 0, x_hi = 0;      // (m)
+  double d_top = 0, d_bottom = 0; // depth below the waste surface (m), top < bottom
+  int mat = 0;
+  bool contains(double x, double depth) const {
+    return x >= x_lo && x <= x_hi && depth >= d_top && depth <= d_bottom;
+  }
 };
 
 struct StageRow {
@@ -129,6 +143,7 @@ class CoverScene final : public Scene {
   std::vector<Layer> layers_;                        // bottom-up
   std::vector<Membrane> mem_;                        // bottom-up
   std::string waste_mat_ = "waste";
+  std::vector<Zone> zones_; // waste zones with their own materials
   // stages
   double shrink_total_ = 0;
   PetscInt shrink_stages_ = 0, shrink_steps_ = 0;
@@ -137,12 +152,14 @@ class CoverScene final : public Scene {
   double allowable_ = 0.03;
   double gauge_ = 0; // strain gauge length (m); 0: one cell
   PetscBool geostatic_paper_ = PETSC_TRUE;
+  PetscBool geostatic_ = PETSC_TRUE; // stage 0 a separate geostatic stage (sheets laid after it)
   std::vector<FaceType> face_types_; // the chains' own face types (top, bottom per chain)
   // derived
   double dxp_ = 0;                    // particle column spacing h / ppc
   PetscInt ncol_ = 0, R_ = 0;         // columns; pid stride per column
   std::vector<PetscInt> surface_pid_; // the top particle of each column (sorted)
   std::vector<char> cover_mat_;       // per material: a cover layer's
+  std::vector<char> waste_mat_of_;    // per material: the waste's or a waste zone's
   double cum_shrink_ = 0, void_now_ = 0, void_eff_ = 0;
   // references at the end of stage 0 (rank 0 for the surface; chains on every rank)
   std::map<PetscInt, double> surf_ref_;
@@ -177,6 +194,12 @@ class CoverScene final : public Scene {
     const double top = ys(X[0]) - void_depth_;
     return std::fabs(X[0] - void_x_) <= 0.5 * width && X[1] <= top && X[1] >= top - void_h_;
   }
+  // the waste's material at x, depth below the waste surface: a zone's, or the waste's
+  int waste_material_at(double x, double depth) const {
+    for (const Zone &z : zones_)
+      if (z.contains(x, depth)) return z.mat;
+    return 0;
+  }
   // rows of a band of thickness d: whole rows no taller than the particle spacing
   PetscInt rows_in(double d) const {
     return d > 0 ? static_cast<PetscInt>(std::ceil(d / dxp_ - 1e-9)) : 0;
@@ -184,13 +207,15 @@ class CoverScene final : public Scene {
 
   // The cover's own options block, read into raw lists (checked by ReadOptions).
   struct RawCoverOptions {
-    PetscInt nsurf = 2 * kMaxList, nvoid = kMaxList, nz = 2, ng = 2, nl = kMaxList, nm = kMaxList;
+    PetscInt nsurf = 2 * kMaxList, nvoid = kMaxList, nz = 2, ng = 2, nl = kMaxList, nm = kMaxList,
+             nzones = kMaxList;
     PetscBool surf_set = PETSC_FALSE, vw_set = PETSC_FALSE, zx_set = PETSC_FALSE,
-              gr_set = PETSC_FALSE, l_set = PETSC_FALSE, m_set = PETSC_FALSE;
+              gr_set = PETSC_FALSE, l_set = PETSC_FALSE, m_set = PETSC_FALSE,
+              zones_set = PETSC_FALSE;
     std::vector<double> surf = std::vector<double>(2 * kMaxList),
                         vw = std::vector<double>(kMaxList);
     double zx[2] = {0, 0}, gr[2] = {1, 1};
-    char *lnames[kMaxList], *mnames[kMaxList], wbuf[64];
+    char *lnames[kMaxList], *mnames[kMaxList], *znames[kMaxList], wbuf[64];
   };
   PetscErrorCode ReadCoverBlock(Simulation &sim, RawCoverOptions &raw) {
     PetscFunctionBeginUser;
@@ -219,6 +244,10 @@ class CoverScene final : public Scene {
                                       raw.lnames, &raw.nl, &raw.l_set));
     PetscCall(PetscOptionsString("-waste_material", "Material of the waste (-mat_<name>_*)",
                                  nullptr, raw.wbuf, raw.wbuf, sizeof(raw.wbuf), nullptr));
+    PetscCall(PetscOptionsStringArray("-zones",
+                                      "Waste zones with their own material (names; each "
+                                      "-cover_zone_<name>_material, _x, _depth)",
+                                      nullptr, raw.znames, &raw.nzones, &raw.zones_set));
     PetscCall(PetscOptionsStringArray(
         "-membranes", "Geomembranes as chains (names; each -cover_membrane_<name>_under)", nullptr,
         raw.mnames, &raw.nm, &raw.m_set));
@@ -272,18 +301,25 @@ class CoverScene final : public Scene {
         "types from stage 1. Under gravity alone nothing separates, and velocity-based contact "
         "let the soft waste run ahead of the cover by 12 % of a cell",
         nullptr, geostatic_paper_, &geostatic_paper_, nullptr));
+    PetscCall(PetscOptionsBool(
+        "-geostatic",
+        "Stage 0 is a separate geostatic stage: the membranes are laid unstrained after it and "
+        "displacements are measured from it. 0: the sheets carry the strain of the first load "
+        "and displacements are measured from the start (the seed paper's model)",
+        nullptr, geostatic_, &geostatic_, nullptr));
     PetscOptionsEnd();
     PetscFunctionReturn(0);
   }
 
   PetscErrorCode ReadOptions(Simulation &sim) {
-    std::vector<std::string> layer_names, mem_names;
+    std::vector<std::string> layer_names, mem_names, zone_names;
     RawCoverOptions raw;
     PetscFunctionBeginUser;
     PetscCall(ReadCoverBlock(sim, raw));
     waste_mat_ = raw.wbuf;
     if (raw.l_set) TakeNames(raw.lnames, raw.nl, layer_names);
     if (raw.m_set) TakeNames(raw.mnames, raw.nm, mem_names);
+    if (raw.zones_set) TakeNames(raw.znames, raw.nzones, zone_names);
     void_w_.assign(raw.vw.begin(), raw.vw.begin() + (raw.vw_set ? raw.nvoid : 0));
     if (raw.surf_set) {
       PmpmCheckInput(raw.nsurf >= 4 && raw.nsurf % 2 == 0, sim.comm, PETSC_ERR_USER_INPUT,
@@ -303,6 +339,55 @@ class CoverScene final : public Scene {
     sim.shrink.grade_top = raw.gr[1];
     PetscCall(ReadLayers(sim, layer_names));
     PetscCall(ReadMembranes(sim, mem_names));
+    PetscCall(ReadZones(sim, zone_names));
+    PetscFunctionReturn(0);
+  }
+
+  // Each waste zone's own prefixed options (-cover_zone_<name>_*).
+  PetscErrorCode ReadZones(Simulation &sim, const std::vector<std::string> &zone_names) {
+    PetscFunctionBeginUser;
+    zones_.clear();
+    for (const std::string &nm : zone_names) {
+      Zone Z;
+      Z.name = nm;
+      char mat[64];
+      PetscCall(PetscStrncpy(mat, nm.c_str(), sizeof(mat)));
+      double x[2] = {0, 0}, d[2] = {0, 0};
+      PetscInt nx = 2, nd = 2;
+      PetscBool xset = PETSC_FALSE, dset = PETSC_FALSE;
+      const std::string pre = "cover_zone_" + nm + "_";
+      PetscOptionsBegin(sim.comm, pre.c_str(), ("Waste zone " + nm).c_str(), nullptr);
+      PetscCall(PetscOptionsString("-material", "Material (-mat_<name>_*; default: the zone's)",
+                                   nullptr, mat, mat, sizeof(mat), nullptr));
+      PetscCall(PmpmOptionsRealArray("-x",
+                                     "x_lo,x_hi (m; under -geometry axisymmetric the radii, so "
+                                     "0,R is a disc)",
+                                     nullptr, x, &nx, &xset));
+      PetscCall(PmpmOptionsRealArray("-depth",
+                                     "top,bottom: depths below the waste surface (m), 0 <= top "
+                                     "< bottom",
+                                     nullptr, d, &nd, &dset));
+      PetscOptionsEnd();
+      PmpmCheckInput(xset && nx == 2 && x[0] < x[1], sim.comm, PETSC_ERR_USER_INPUT,
+                     "-%sx is required: x_lo,x_hi with x_lo < x_hi", pre.c_str());
+      PmpmCheckInput(dset && nd == 2 && d[0] >= 0 && d[0] < d[1], sim.comm, PETSC_ERR_USER_INPUT,
+                     "-%sdepth is required: top,bottom below the waste surface with 0 <= top < "
+                     "bottom",
+                     pre.c_str());
+      Z.material = mat;
+      Z.x_lo = x[0];
+      Z.x_hi = x[1];
+      Z.d_top = d[0];
+      Z.d_bottom = d[1];
+      for (const Zone &o : zones_)
+        PmpmCheckInput(Z.x_hi <= o.x_lo || Z.x_lo >= o.x_hi || Z.d_bottom <= o.d_top ||
+                           Z.d_top >= o.d_bottom,
+                       sim.comm, PETSC_ERR_USER_INPUT,
+                       "-cover_zones: zones %s and %s overlap (give them disjoint -%sx or "
+                       "-%sdepth ranges)",
+                       o.name.c_str(), nm.c_str(), pre.c_str(), pre.c_str());
+      zones_.push_back(Z);
+    }
     PetscFunctionReturn(0);
   }
 
@@ -463,6 +548,10 @@ class CoverScene final : public Scene {
                      "-cell_size",
                      void_w_.front(), 2 * dxp_);
     }
+    for (const Zone &z : zones_)
+      PmpmCheckInput(z.x_lo >= 0 && z.x_hi <= W_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                     "-cover_zone_%s_x %g,%g must lie in [0, -cover_width %g]", z.name.c_str(),
+                     z.x_lo, z.x_hi, W_);
     PmpmCheckInput(allowable_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-cover_allowable_strain must be > 0");
     PmpmCheckInput(
@@ -501,29 +590,43 @@ public:
       layers_[k].mat = static_cast<int>(it - names.begin());
       if (it == names.end()) names.push_back(layer_mats_[k]);
     }
+    const size_t nlayer_mats = names.size();
+    for (Zone &z : zones_) { // zones after the layers: a layer's material is not the waste's
+      auto it = std::find(names.begin(), names.end(), z.material);
+      PmpmCheckInput(it == names.begin() || it - names.begin() >= (long)nlayer_mats, sim.comm,
+                     PETSC_ERR_USER_INPUT,
+                     "-cover_zone_%s_material %s is a cover layer's material: give the zone its "
+                     "own",
+                     z.name.c_str(), z.material.c_str());
+      z.mat = static_cast<int>(it - names.begin());
+      if (it == names.end()) names.push_back(z.material);
+    }
     sim.mats.resize(names.size());
     cover_mat_.assign(names.size(), 0);
+    waste_mat_of_.assign(names.size(), 0);
     for (size_t m = 0; m < names.size(); ++m)
       PetscCall(MaterialFromOptions(sim.comm, names[m], sim.mats[m]));
     for (const Layer &l : layers_) cover_mat_[l.mat] = 1;
+    waste_mat_of_[0] = 1;
+    for (const Zone &z : zones_) waste_mat_of_[z.mat] = 1;
     PmpmCheckInput(
         !cover_mat_[0], sim.comm, PETSC_ERR_USER_INPUT,
         "-cover_waste_material %s is also a cover layer's material: give the waste its own",
         waste_mat_.c_str());
-    // degradation: the waste shrinks (rate-form materials only)
-    sim.shrink.degrades.assign(names.size(), 0);
-    sim.shrink.degrades[0] = 1;
+    // degradation: the waste and its zones shrink (rate-form materials only)
+    sim.shrink.degrades.assign(waste_mat_of_.begin(), waste_mat_of_.end());
     sim.shrink.y_lo = 0;
     sim.shrink.y_hi = 1e300;
     if (shrink_total_ > 0) {
       double ytop = 0;
       for (size_t k = 0; k < surf_.size() / 2; ++k) ytop = std::fmax(ytop, surf_[2 * k + 1]);
       sim.shrink.y_hi = ytop; // grading is linear from the base to the highest waste surface
-      PmpmCheckInput(sim.mats[0].model->rate_form(), sim.comm, PETSC_ERR_SUP,
-                     "-cover_shrink_total needs a rate-form waste material (%s), not "
-                     "-mat_%s_model %s",
-                     MaterialLawList(&MaterialLaw::rate_form).c_str(), waste_mat_.c_str(),
-                     sim.mats[0].model->model());
+      for (size_t m = 0; m < names.size(); ++m)
+        PmpmCheckInput(!waste_mat_of_[m] || sim.mats[m].model->rate_form(), sim.comm, PETSC_ERR_SUP,
+                       "-cover_shrink_total needs rate-form waste materials (%s), not "
+                       "-mat_%s_model %s",
+                       MaterialLawList(&MaterialLaw::rate_form).c_str(), names[m].c_str(),
+                       sim.mats[m].model->model());
     }
     // membranes: chains at the base of their layers, ends half a point spacing inside the walls
     for (const Membrane &M : mem_) {
@@ -565,12 +668,12 @@ public:
       for (size_t k = 0; k + 1 < b.size(); ++k) {
         const double d = b[k + 1] - b[k];
         const PetscInt n = rows_in(d);
-        const int mat = k == 0 ? 0 : layers_[k - 1].mat;
         for (PetscInt r = 0; r < n; ++r, ++row) {
           ParticleInit q{};
           const double dy = d / n;
           q.x[0] = x;
           q.x[1] = b[k] + (r + 0.5) * dy;
+          const int mat = k == 0 ? waste_material_at(x, b[1] - q.x[1]) : layers_[k - 1].mat;
           const PetscInt c[DIM] = {static_cast<PetscInt>(std::floor(q.x[0] / sim.set.h)),
                                    static_cast<PetscInt>(std::floor(q.x[1] / sim.set.h))};
           if (!sim.grid.owns_cell(c)) continue;
@@ -600,6 +703,11 @@ public:
   PetscErrorCode begin_stage(Simulation &sim, PetscInt k) override {
     PetscFunctionBeginUser;
     if (k == 0) {
+      if (!geostatic_) { // displacements from the start: the sheets carry the first load too
+        double none;
+        PetscCall(SurfaceSettlement(sim, true, &none));
+        if (!sim.chains.empty()) sheet_ref_ = sim.chains.back().x;
+      }
       face_types_.clear();
       for (Chain &c : sim.chains) {
         face_types_.push_back(c.top.type);
@@ -632,7 +740,7 @@ public:
     std::vector<PetscInt> gone;
     PetscCall(ParticlesGetView(sim.parts, P));
     for (PetscInt p = 0; p < P.n; ++p)
-      if (P.mat[p] == 0 && in_void(P.x0 + p * DIM, void_now_)) gone.push_back(p);
+      if (waste_mat_of_[P.mat[p]] && in_void(P.x0 + p * DIM, void_now_)) gone.push_back(p);
     PetscCall(ParticlesRestoreView(sim.parts, P));
     for (auto it = gone.rbegin(); it != gone.rend(); ++it)
       PetscCall(DMSwarmRemovePointAtIndex(sim.parts.sw, *it));
@@ -646,7 +754,8 @@ public:
   }
 
   // Surface settlement per column relative to stage 0 (rank 0): gather the top particles.
-  PetscErrorCode SurfaceSettlement(Simulation &sim, double *smax) {
+  // With reference, the current heights become the reference instead (smax = 0).
+  PetscErrorCode SurfaceSettlement(Simulation &sim, bool reference, double *smax) {
     ParticleView P;
     std::vector<double> mine;
     PetscFunctionBeginUser;
@@ -662,7 +771,7 @@ public:
     *smax = 0;
     for (size_t j = 0; j + 1 < all.size(); j += 2) {
       const PetscInt id = static_cast<PetscInt>(all[j]);
-      if (sim.stage == 0)
+      if (reference)
         surf_ref_[id] = all[j + 1];
       else if (surf_ref_.count(id))
         *smax = std::fmax(*smax, surf_ref_[id] - all[j + 1]);
@@ -726,16 +835,16 @@ public:
 
   PetscErrorCode end_stage(Simulation &sim, PetscInt k) override {
     PetscFunctionBeginUser;
-    if (k == 0) { // displacements from here on
+    if (k == 0 && geostatic_) { // displacements from here on
       if (!sim.chains.empty()) sheet_ref_ = sim.chains.back().x;
     }
     StageRow r;
     r.stage = static_cast<int>(k);
     const PetscInt ns = shrink_total_ > 0 ? shrink_stages_ : 0;
-    r.kind = k == 0 ? "geostatic" : k <= ns ? "shrink" : "void";
+    r.kind = k == 0 ? (geostatic_ ? "geostatic" : "load") : k <= ns ? "shrink" : "void";
     r.shrink = cum_shrink_;
     r.void_width = void_now_ > 0 ? void_eff_ : 0;
-    PetscCall(SurfaceSettlement(sim, &r.surface_settlement));
+    PetscCall(SurfaceSettlement(sim, k == 0 && geostatic_, &r.surface_settlement));
     std::vector<double> lt;
     PetscCall(CoverStrains(sim, lt, &r.cover_eps_p));
     if (!sim.chains.empty()) { // the top-most membrane is the one reported per stage
@@ -763,7 +872,7 @@ public:
     rows_.push_back(r);
     // stage 0 is recorded as it is (a veneer's slip under its own weight, the strain the cover's
     // weight gave); then the membranes are laid unstrained on the settled ground
-    if (k == 0)
+    if (k == 0 && geostatic_)
       for (Chain &c : sim.chains) chain_lay(c);
     // the record so far, complete after every stage; a frame for ParaView
     PetscCall(WriteStages(sim));
@@ -794,7 +903,10 @@ public:
       ref.push_back(q.second);
     }
     for (const StageRow &q : rows_) {
-      const double kind = q.kind == "geostatic" ? 0 : q.kind == "shrink" ? 1 : 2;
+      const double kind = q.kind == "geostatic" ? 0
+                          : q.kind == "shrink"  ? 1
+                          : q.kind == "void"    ? 2
+                                                : 3;
       const double row[kRow] = {double(q.stage),
                                 kind,
                                 q.shrink,
@@ -843,7 +955,7 @@ public:
       for (size_t j = 0; j < ref.size(); j += 2)
         surf_ref_[static_cast<PetscInt>(ref[j])] = ref[j + 1];
     rows_.clear();
-    const char *kinds[3] = {"geostatic", "shrink", "void"};
+    const char *kinds[4] = {"geostatic", "shrink", "void", "load"};
     for (size_t j = 0; j < rows.size(); j += kRow) {
       const double *q = &rows[j];
       StageRow r;
