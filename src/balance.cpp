@@ -1,6 +1,6 @@
 #include "pmpm/options.hpp"
 #include "pmpm/balance.hpp"
-#include "pmpm/output.hpp"
+#include "pmpm/json.hpp"
 #include "pmpm/particle_records.hpp"
 #include "pmpm/simulation.hpp"
 #include <algorithm>

@@ -1,6 +1,6 @@
 // Design answers, their error estimate and the verdict (design.hpp).
 #include "pmpm/design.hpp"
-#include "pmpm/output.hpp"
+#include "pmpm/json.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

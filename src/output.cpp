@@ -74,19 +74,6 @@ std::vector<std::string> g_series; // XDMF grids of the time-series frames (rank
 bool g_series_first = true;        // this run's first frame (a restarted run's may come later)
 } // namespace
 
-std::string json_num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char b[64];
-  snprintf(b, sizeof(b), "%.17g", v);
-  return b;
-}
-std::string json_kv(const std::string &k, double v) {
-  return "\"" + k + "\": " + json_num(v);
-}
-std::string json_kv(const std::string &k, const std::string &raw) {
-  return "\"" + k + "\": " + raw;
-}
-
 PetscErrorCode OutputPrepareDirectory(Simulation &sim) {
   PetscFunctionBeginUser;
   if (!ev_output) {

@@ -2,6 +2,7 @@
 // Files are written under temporary names and renamed when complete, so a failed run leaves no
 // half-written output.
 #pragma once
+#include "pmpm/json.hpp"
 #include "pmpm/simulation.hpp"
 #include <string>
 #include <vector>
@@ -27,10 +28,5 @@ PetscErrorCode OutputChains(Simulation &sim);
 std::string ChainSummaryJson(const Simulation &sim);
 // Rename DIR/name.tmp to DIR/name on rank 0.
 PetscErrorCode OutputCommit(Simulation &sim, const std::string &name);
-
-// Small JSON helpers.
-std::string json_num(double v);
-std::string json_kv(const std::string &k, double v);
-std::string json_kv(const std::string &k, const std::string &raw);
 
 } // namespace pmpm
