@@ -277,84 +277,85 @@ void grid_update(const GridViewT<D> &G, const GridUpdateParamsT<D> &prm, GridSta
   const PrescribedVelocity *pv =
       prm.prescribed && !prm.prescribed->empty() ? prm.prescribed : nullptr;
   PrescribedCursor<D> cur{pv};
-  for_each_node<D>(G, [&](const PetscInt *n) {
-    double *node0 = G.node(n);
-    // the node's totals over its bodies: the unbalanced force and the load are the sums (the
-    // forces between bodies at a node cancel)
-    double msum = 0.0, ftot[D] = {}, fext[D] = {};
-    for (int b = 0; b < G.nbody; ++b) {
-      const double *node = node0 + b * ND;
-      if (node[Dof::M] <= 0.0) continue;
-      msum += node[Dof::M];
-      for (int d = 0; d < D; ++d) {
-        ftot[d] += node[Dof::F + d];
-        fext[d] += node[Dof::FEXT + d];
-      }
-    }
-    if (msum <= 0.0) return; // empty node: nothing to update (its slots stay zero)
-    bool held[D];
-    held_dofs<D>(n, G.ncell, prm.face, held);
-    long pi[D];
-    cur.at(n, G.ncell, pi);
-    for (int d = 0; d < D; ++d)
-      if (pi[d] >= 0) {
-        held[d] = true; // a support: out of the unbalanced force
-        st.support_force[d] += pv->weight[pi[d]] * ftot[d];
-        st.support_power -= ftot[d] * pv->v[pi[d]];
-      }
-    double fext2 = 0.0;
-    for (int d = 0; d < D; ++d) fext2 += fext[d] * fext[d];
-    if (fext2 > 0.0) {
-      st.sum_ext += std::sqrt(fext2);
-      st.n_ext += 1.0;
-    }
-    double f2 = 0.0; // |f_int + f_ext|^2 over the free dofs
-    for (int d = 0; d < D; ++d)
-      if (!held[d]) f2 += ftot[d] * ftot[d];
-    if (std::sqrt(f2) > st.max_unbalanced) {
-      st.max_unbalanced = std::sqrt(f2);
-      for (int d = 0; d < D; ++d) st.max_at[d] = G.origin[d] + n[d] * G.h;
-    }
-    // each body's own momentum balance
-    for (int b = 0; b < G.nbody; ++b) {
-      double *node = node0 + b * ND;
-      const double m = node[Dof::M];
-      if (m <= 0.0) continue;
-      for (int d = 0; d < D; ++d) {
-        double v = node[Dof::P + d] / m;
-        double f = node[Dof::F + d];
-        if (pi[d] >= 0) {
-          const double vp = pv->v[pi[d]];
-          node[Dof::P + d] = vp;
-          node[Dof::F + d] = dt > 0.0 ? (vp - v) / dt : 0.0;
-          st.kinetic += 0.5 * m * vp * vp;
-          continue;
+  for_each_node<D>(
+      G, [&](const PetscInt *n) __attribute__((always_inline)) {
+        double *node0 = G.node(n);
+        // the node's totals over its bodies: the unbalanced force and the load are the sums (the
+        // forces between bodies at a node cancel)
+        double msum = 0.0, ftot[D] = {}, fext[D] = {};
+        for (int b = 0; b < G.nbody; ++b) {
+          const double *node = node0 + b * ND;
+          if (node[Dof::M] <= 0.0) continue;
+          msum += node[Dof::M];
+          for (int d = 0; d < D; ++d) {
+            ftot[d] += node[Dof::F + d];
+            fext[d] += node[Dof::FEXT + d];
+          }
         }
-        if (held[d]) {
-          node[Dof::P + d] = 0.0;
-          node[Dof::F + d] = 0.0;
-          continue;
+        if (msum <= 0.0) return; // empty node: nothing to update (its slots stay zero)
+        bool held[D];
+        held_dofs<D>(n, G.ncell, prm.face, held);
+        long pi[D];
+        cur.at(n, G.ncell, pi);
+        for (int d = 0; d < D; ++d)
+          if (pi[d] >= 0) {
+            held[d] = true; // a support: out of the unbalanced force
+            st.support_force[d] += pv->weight[pi[d]] * ftot[d];
+            st.support_power -= ftot[d] * pv->v[pi[d]];
+          }
+        double fext2 = 0.0;
+        for (int d = 0; d < D; ++d) fext2 += fext[d] * fext[d];
+        if (fext2 > 0.0) {
+          st.sum_ext += std::sqrt(fext2);
+          st.n_ext += 1.0;
         }
-        const double v0 = v, f0 = f;
-        if (alpha > 0.0 && v != 0.0) f -= alpha * std::fabs(f) * (v > 0.0 ? 1.0 : -1.0);
-        double a = f / m;
-        v += dt * a;
-        if (prm.fire) {
-          st.power += 0.5 * f0 * (v0 + v);
-          st.mv2 += m * v * v;
-          st.f2m += f0 * f0 / m;
+        double f2 = 0.0; // |f_int + f_ext|^2 over the free dofs
+        for (int d = 0; d < D; ++d)
+          if (!held[d]) f2 += ftot[d] * ftot[d];
+        if (std::sqrt(f2) > st.max_unbalanced) {
+          st.max_unbalanced = std::sqrt(f2);
+          for (int d = 0; d < D; ++d) st.max_at[d] = G.origin[d] + n[d] * G.h;
         }
-        if (mix > 0.0 && dt > 0.0) {
-          const double vm = (1.0 - mix) * v + mix * prm.fire_scale * f0 / m;
-          a += (vm - v) / dt;
-          v = vm;
+        // each body's own momentum balance
+        for (int b = 0; b < G.nbody; ++b) {
+          double *node = node0 + b * ND;
+          const double m = node[Dof::M];
+          if (m <= 0.0) continue;
+          for (int d = 0; d < D; ++d) {
+            double v = node[Dof::P + d] / m;
+            double f = node[Dof::F + d];
+            if (pi[d] >= 0) {
+              const double vp = pv->v[pi[d]];
+              node[Dof::P + d] = vp;
+              node[Dof::F + d] = dt > 0.0 ? (vp - v) / dt : 0.0;
+              st.kinetic += 0.5 * m * vp * vp;
+              continue;
+            }
+            if (held[d]) {
+              node[Dof::P + d] = 0.0;
+              node[Dof::F + d] = 0.0;
+              continue;
+            }
+            const double v0 = v, f0 = f;
+            if (alpha > 0.0 && v != 0.0) f -= alpha * std::fabs(f) * (v > 0.0 ? 1.0 : -1.0);
+            double a = f / m;
+            v += dt * a;
+            if (prm.fire) {
+              st.power += 0.5 * f0 * (v0 + v);
+              st.mv2 += m * v * v;
+              st.f2m += f0 * f0 / m;
+            }
+            if (mix > 0.0 && dt > 0.0) {
+              const double vm = (1.0 - mix) * v + mix * prm.fire_scale * f0 / m;
+              a += (vm - v) / dt;
+              v = vm;
+            }
+            node[Dof::P + d] = v;
+            node[Dof::F + d] = a;
+            st.kinetic += 0.5 * m * v * v;
+          }
         }
-        node[Dof::P + d] = v;
-        node[Dof::F + d] = a;
-        st.kinetic += 0.5 * m * v * v;
-      }
-    }
-  });
+      });
 }
 
 namespace {
@@ -638,17 +639,18 @@ void grid_velocity(const GridViewT<D> &G, const FaceBC *face,
                    const PrescribedVelocity *prescribed) {
   using Dof = GridDofT<D>;
   PrescribedCursor<D> cur{prescribed && !prescribed->empty() ? prescribed : nullptr};
-  for_each_node<D>(G, [&](const PetscInt *n) {
-    double *node = G.node(n);
-    const double m = node[Dof::M];
-    if (m <= 0.0) return;
-    bool held[D];
-    held_dofs<D>(n, G.ncell, face, held);
-    long pi[D];
-    cur.at(n, G.ncell, pi);
-    for (int d = 0; d < D; ++d)
-      node[Dof::P + d] = pi[d] >= 0 ? cur.pv->v[pi[d]] : (held[d] ? 0.0 : node[Dof::P + d] / m);
-  });
+  for_each_node<D>(
+      G, [&](const PetscInt *n) __attribute__((always_inline)) {
+        double *node = G.node(n);
+        const double m = node[Dof::M];
+        if (m <= 0.0) return;
+        bool held[D];
+        held_dofs<D>(n, G.ncell, face, held);
+        long pi[D];
+        cur.at(n, G.ncell, pi);
+        for (int d = 0; d < D; ++d)
+          node[Dof::P + d] = pi[d] >= 0 ? cur.pv->v[pi[d]] : (held[d] ? 0.0 : node[Dof::P + d] / m);
+      });
 }
 
 #define PMPM_INSTANTIATE_D(S, D)                                                                   \
