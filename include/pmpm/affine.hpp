@@ -59,35 +59,37 @@ inline void affine1d(double xi, int base, const double *w, const double *dw, dou
   }
 }
 
-// The particle's D_p (diagonal, m^2) at x with half-size l.
-template <class Shape>
-inline void affine_inertia(const double *x, const double *l, const double origin[DIM], double h,
-                           double D[DIM]) {
+// The particle's D_p (diagonal, m^2) at x with half-size l, in D dimensions.
+template <class Shape, int D = DIM>
+inline void affine_inertia(const double *x, const double *l, const double *origin, double h,
+                           double *Dp) {
   constexpr int NS = Shape::NS;
   double w[NS], dw[NS];
   int base;
-  for (int d = 0; d < DIM; ++d) {
+  for (int d = 0; d < D; ++d) {
     const double xi = (x[d] - origin[d]) / h;
     Shape::eval1d(xi, l[d] / h, base, w, dw);
     double s2 = 0.0;
     for (int k = 0; k < NS; ++k) s2 += w[k] * ((base + k) - xi) * ((base + k) - xi);
-    D[d] = s2 * h * h;
+    Dp[d] = s2 * h * h;
   }
 }
 // The same for the run's shape, from the particle's initial half-size lp and its deformation
 // gradient F (the shape's half(): cpGIMP's block follows F).
+template <int D = DIM>
 inline void affine_inertia(ShapeKind shape, const double *x, const double *lp, const double *F,
-                           const double origin[DIM], double h, double D[DIM]) {
-  double lb[DIM];
+                           const double *origin, double h, double *Dp) {
+  double lb[D];
   if (shape == ShapeKind::Linear)
-    affine_inertia<LinearShape>(x, lp, origin, h, D);
+    affine_inertia<LinearShape, D>(x, lp, origin, h, Dp);
   else if (shape == ShapeKind::CPGIMP)
-    affine_inertia<CPGIMPShape>(x, CPGIMPShape::half(lp, F, lb), origin, h, D);
+    affine_inertia<CPGIMPShape, D>(x, CPGIMPShape::half<D>(lp, F, lb), origin, h, Dp);
   else
-    affine_inertia<UGIMPShape>(x, lp, origin, h, D);
+    affine_inertia<UGIMPShape, D>(x, lp, origin, h, Dp);
 }
 
-// The particle's spin angular momentum (about its own centre), m_p eps : B_p = m (B_yx - B_xy).
+// The particle's spin angular momentum (about its own centre), m_p eps : B_p = m (B_yx - B_xy)
+// (2D; in 3D the spin is the vector m (B_zy - B_yz, B_xz - B_zx, B_yx - B_xy)).
 inline double affine_spin(double m, const double *B) {
   return m * (B[2] - B[1]);
 }
@@ -97,11 +99,11 @@ inline double affine_spin(double m, const double *B) {
 // next P2G. A direction with D = 0 (a linear hat's particle on a node line) has no affine part.
 // With linear hats D_p at a new position can be small while B_p (taken at the old one) is not:
 // there this measure is large although the momentum it sends is bounded (uGIMP: D >= l^2 / 3).
-inline double affine_kinetic(double m, const double *B, const double D[DIM]) {
+template <int D = DIM> inline double affine_kinetic(double m, const double *B, const double *Dp) {
   double e = 0.0;
-  for (int d = 0; d < DIM; ++d)
-    for (int k = 0; k < DIM; ++k)
-      if (D[k] > 0.0) e += B[d * DIM + k] * B[d * DIM + k] / D[k];
+  for (int d = 0; d < D; ++d)
+    for (int k = 0; k < D; ++k)
+      if (Dp[k] > 0.0) e += B[d * D + k] * B[d * D + k] / Dp[k];
   return 0.5 * m * e;
 }
 

@@ -1,9 +1,9 @@
-// The background grid: a DMDA of (n+1)^DIM nodes over the scene's box, uniform cell size h.
-// Nodal fields live in one vector. Every body on the grid (a continuum region with its own
-// velocity field, or a membrane chain, chain.hpp) has a block of GridDof::NDOF values per node;
-// a scene without chains has one body, and the blocks are followed by `extra` values per node
-// (a chain's geometry sums, ChainDof). Particle-to-grid sums go into the local (ghosted) vector
-// and are added across ranks; grid-to-particle reads ghosted values.
+// The background grid (the driver's, DIM = 2 today): a DMDA of (n+1)^DIM nodes over the scene's
+// box, uniform cell size h. Nodal fields live in one vector. Every body on the grid (a continuum
+// region with its own velocity field, or a membrane chain, chain.hpp) has a block of GridDof::NDOF
+// values per node; a scene without chains has one body, and the blocks are followed by `extra`
+// values per node (a chain's geometry sums, ChainDof). Particle-to-grid sums go into the local
+// (ghosted) vector and are added across ranks; grid-to-particle reads ghosted values.
 #pragma once
 #include "pmpm/config.hpp"
 #include <petscdmda.h>
@@ -12,33 +12,54 @@ namespace pmpm {
 
 // Nodal layout. During P2G a node holds mass, momentum, total force and external force; after the
 // grid update the same slots hold mass, new velocity and acceleration (what G2P reads).
-struct GridDof {
-  static constexpr int M = 0;              // mass
-  static constexpr int P = 1;              // momentum -> velocity after the update
-  static constexpr int F = 1 + DIM;        // total force -> acceleration after the update
-  static constexpr int FEXT = 1 + 2 * DIM; // external force (for the unbalanced-force ratio)
-  static constexpr int NDOF = 1 + 3 * DIM;
+template <int D> struct GridDofT {
+  static constexpr int M = 0;            // mass
+  static constexpr int P = 1;            // momentum -> velocity after the update
+  static constexpr int F = 1 + D;        // total force -> acceleration after the update
+  static constexpr int FEXT = 1 + 2 * D; // external force (for the unbalanced-force ratio)
+  static constexpr int NDOF = 1 + 3 * D;
 };
+using GridDof = GridDofT<DIM>;
 
-// A plain view of the ghosted local nodal array, for kernels: node (i, j) in global indices is
-// at data[((j - gs[1]) * row() + (i - gs[0])) * nd]; body b's block starts b * NDOF further.
-// A view of a part of an array (the owned nodes inside the ghosted array, Grid::shared) has rows
-// of ld nodes; a view of a whole array leaves ld = 0 (rows of gm[0] nodes).
-struct GridView {
+// A plain view of the ghosted local nodal array of a D-dimensional grid (D = 2, 3), for kernels:
+// node idx (global indices, x fastest) is at data[off * nd], off = (i - gs[0]) + row() ((j - gs[1])
+// + rows() (k - gs[2])); body b's block starts b * NDOF further. A view of a part of an array
+// (the owned nodes inside the ghosted array, Grid::shared) has rows of ld nodes and (3D) planes
+// of ldr rows; a view of a whole array leaves ld = ldr = 0 (rows of gm[0] nodes, planes of gm[1]
+// rows).
+template <int D> struct GridViewT {
+  static_assert(D == 2 || D == 3, "2D or 3D");
   double h = 0;
-  double origin[DIM] = {0, 0};
-  PetscInt ncell[DIM] = {0, 0};
-  PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0}; // ghosted start and size, node indices
-  PetscInt ld = 0;                             // nodes per row of data (0: gm[0])
-  int nbody = 1;                               // bodies (blocks of NDOF) per node
-  int nd = GridDof::NDOF;                      // values per node: nbody * NDOF + extra
-  bool axisymmetric = false;                   // x is the radius (geometry.hpp)
+  double origin[D] = {};
+  PetscInt ncell[D] = {};
+  PetscInt gs[D] = {}, gm[D] = {}; // ghosted start and size, node indices
+  PetscInt ld = 0;                 // nodes per row of data (0: gm[0])
+  PetscInt ldr = 0;                // 3D: rows per plane of data (0: gm[1])
+  int nbody = 1;                   // bodies (blocks of NDOF) per node
+  int nd = GridDofT<D>::NDOF;      // values per node: nbody * NDOF + extra
+  bool axisymmetric = false;       // x is the radius (geometry.hpp; 2D only)
   double *data = nullptr;
   PetscInt row() const { return ld ? ld : gm[0]; }
+  PetscInt rows() const { return ldr ? ldr : gm[1]; }
+  // node idx (D global indices)
+  double *node(const PetscInt *idx) const {
+    PetscInt off = idx[D - 1] - gs[D - 1];
+    if constexpr (D == 3) off = off * rows() + (idx[1] - gs[1]);
+    return data + (off * row() + (idx[0] - gs[0])) * nd;
+  }
   double *node(PetscInt i, PetscInt j) const {
+    static_assert(D == 2, "node(i, j): 2D");
     return data + ((j - gs[1]) * row() + (i - gs[0])) * nd;
   }
+  double *node(PetscInt i, PetscInt j, PetscInt k) const {
+    static_assert(D == 3, "node(i, j, k): 3D");
+    return data + (((k - gs[2]) * rows() + (j - gs[1])) * row() + (i - gs[0])) * nd;
+  }
+  // doubles between neighbouring nodes along y (a row) and z (a plane)
+  PetscInt row_stride() const { return row() * nd; }
+  PetscInt plane_stride() const { return D == 3 ? rows() * row() * nd : 0; }
 };
+using GridView = GridViewT<DIM>;
 
 struct Grid {
   DM da = nullptr;

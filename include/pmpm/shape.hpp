@@ -9,13 +9,14 @@
 // cell units, base the first node index of the support, w the weights and dw their derivatives
 // with respect to xi (divide by h for physical gradients). half() gives the particle's current
 // half-size from its initial one lp and its deformation gradient F: lp itself for a block of
-// fixed size, a deformed size written to buf (DIM values) for cpGIMP. Tensor products build the
-// DIM-D weights (weights() below). A new shape (quadratic B-spline, cpGIMP with a deforming
-// half-size) is one new struct in one new header, plus one line in the dispatch of cycle.cpp. A
-// shape that is not a tensor product (CPDI) provides its own weights() with the same output layout.
-// The shapes the implicit solver runs on (mpm, pmpm) also give the second derivatives of w with
-// respect to xi, d2w1d(xi, li, d2w) over the same support as eval1d (weight_hessians() below): the
-// reset grid's tangent (implicit_kernels.hpp) differentiates grad S_i in the particle's position.
+// fixed size, a deformed size written to buf (D values; half<D>, D = DIM by default) for cpGIMP.
+// Tensor products build the D-dimensional weights (weights() below). A new shape (quadratic
+// B-spline, cpGIMP with a deforming half-size) is one new struct in one new header, plus one line
+// in the dispatch of cycle.cpp. A shape that is not a tensor product (CPDI) provides its own
+// weights() with the same output layout. The shapes the implicit solver runs on (mpm, pmpm) also
+// give the second derivatives of w with respect to xi, d2w1d(xi, li, d2w) over the same support as
+// eval1d (weight_hessians() below): the reset grid's tangent (implicit_kernels.hpp) differentiates
+// grad S_i in the particle's position.
 #pragma once
 #include "pmpm/config.hpp"
 #include <cmath>
@@ -30,7 +31,9 @@ inline constexpr const char *ShapeKindNames[] = {"mpm",       "pmpm",   "cpgimp"
 struct LinearShape {
   static constexpr int NS = 2;
   static constexpr const char *name = "mpm";
-  static const double *half(const double *lp, const double *, double *) { return lp; }
+  template <int D = DIM> static const double *half(const double *lp, const double *, double *) {
+    return lp;
+  }
   static void eval1d(double xi, double /*li*/, int &base, double w[NS], double dw[NS]) {
     base = static_cast<int>(std::floor(xi));
     const double r = xi - base;
@@ -50,7 +53,9 @@ struct LinearShape {
 struct UGIMPShape {
   static constexpr int NS = 3;
   static constexpr const char *name = "pmpm";
-  static const double *half(const double *lp, const double *, double *) { return lp; }
+  template <int D = DIM> static const double *half(const double *lp, const double *, double *) {
+    return lp;
+  }
   // Closed form: with the block [a, b] in the coordinates of its first cell (0 <= a < 1,
   // b = a + 2 li <= a + 1), integrate the three hats piecewise. No branch: with
   // c = min(b, 1) and e = max(b - 1, 0) (the part in the second cell) one expression covers
@@ -83,36 +88,47 @@ struct UGIMPShape {
   }
 };
 
-// DIM-D tensor-product weights of one particle. Node a (0 <= a < NS^DIM) is at
-// base + (a % NS, a / NS); grad is the physical gradient (per metre).
-template <class Shape> struct Weights {
+// D-dimensional tensor-product weights of one particle (D = 2, 3; D = DIM by default). Node a
+// (0 <= a < NS^D) is at base + (a % NS, (a / NS) % NS, a / NS^2): x fastest; grad is the
+// physical gradient (per metre). Each weight and gradient is the product of the 1D factors taken
+// in the order x, y, z (the gradient's own direction with the derivative), so the 2D values are
+// those of the 2D tensor product written out, bit for bit.
+constexpr int ipow(int n, int d) {
+  return d == 0 ? 1 : n * ipow(n, d - 1);
+}
+template <class Shape, int D = DIM> struct Weights {
+  static_assert(D == 2 || D == 3, "2D or 3D");
   static constexpr int NS = Shape::NS;
-  static constexpr int NN = NS * NS; // DIM == 2
-  int base[DIM];
+  static constexpr int NN = ipow(NS, D);
+  int base[D];
   double w[NN];
-  double grad[NN][DIM];
+  double grad[NN][D];
 };
 
-template <class Shape>
-inline void weights(const double *x, const double *l, const double origin[DIM], double h,
-                    Weights<Shape> &W) {
-  constexpr int NS = Shape::NS;
-  static_assert(DIM == 2, "tensor product written for 2D");
-  double wx[NS], dwx[NS], wy[NS], dwy[NS];
+template <class Shape, int D>
+inline void weights(const double *x, const double *l, const double *origin, double h,
+                    Weights<Shape, D> &W) {
+  constexpr int NS = Shape::NS, NN = Weights<Shape, D>::NN;
+  double w1[D][NS], dw1[D][NS];
   const double invh = 1.0 / h;
-  Shape::eval1d((x[0] - origin[0]) * invh, l[0] * invh, W.base[0], wx, dwx);
-  Shape::eval1d((x[1] - origin[1]) * invh, l[1] * invh, W.base[1], wy, dwy);
-  for (int b = 0; b < NS; ++b)
-    for (int a = 0; a < NS; ++a) {
-      const int k = b * NS + a;
-      W.w[k] = wx[a] * wy[b];
-      W.grad[k][0] = dwx[a] * wy[b] * invh;
-      W.grad[k][1] = wx[a] * dwy[b] * invh;
+  for (int d = 0; d < D; ++d)
+    Shape::eval1d((x[d] - origin[d]) * invh, l[d] * invh, W.base[d], w1[d], dw1[d]);
+  for (int k = 0; k < NN; ++k) {
+    int i[D];
+    for (int d = 0, r = k; d < D; ++d, r /= NS) i[d] = r % NS;
+    double w = w1[0][i[0]];
+    for (int d = 1; d < D; ++d) w *= w1[d][i[d]];
+    W.w[k] = w;
+    for (int e = 0; e < D; ++e) {
+      double g = e == 0 ? dw1[0][i[0]] : w1[0][i[0]];
+      for (int d = 1; d < D; ++d) g *= d == e ? dw1[d][i[d]] : w1[d][i[d]];
+      W.grad[k][e] = g * invh;
     }
+  }
 }
 
 // The second derivatives of the DIM-D weights in the particle's position (per metre squared),
-// node k as in weights(): H[k] = {d2S/dx2, d2S/dxdy, d2S/dy2}.
+// node k as in weights(): H[k] = {d2S/dx2, d2S/dxdy, d2S/dy2}. 2D only (the implicit solver's).
 template <class Shape>
 inline void weight_hessians(const double *x, const double *l, const double origin[DIM], double h,
                             double H[][3]) {

@@ -12,7 +12,8 @@
 // inverts a particle at step 389, a quarter turn; with V_dd (= I under any rotation) it keeps
 // uGIMP's blocks and runs its 3.2 turns. In simple shear, F = [[1, g], [0, 1]], V_dd = 1 + O(g^2)
 // where F_dd = 1: the blocks overlap by O(g^2). V has a closed form in 2D:
-// V = (B + J I) / sqrt(tr B + 2 J), B = F F^T, J = |det F|.
+// V = (B + J I) / sqrt(tr B + 2 J), B = F F^T, J = |det F|; in 3D it comes from B's eigen
+// decomposition (half<3>).
 //
 // Support: a block of half-size l <= h (in cell units li <= 1) starting in cell base spans at most
 // three cells, NS = 4 nodes, inside the grid's two ghost layers (grid.cpp). A larger block is
@@ -28,13 +29,29 @@ struct CPGIMPShape {
   static constexpr double kMaxHalf = 1.0;     // largest half-size, in cells, the support holds
   static constexpr double kMinStretch = 1e-3; // floor on V_dd (a collapsed F only)
 
-  // The current half-size: buf_d = lp_d max(V_dd, kMinStretch); F row-major DIM x DIM.
-  static const double *half(const double *lp, const double *F, double *buf) {
-    const double B00 = F[0] * F[0] + F[1] * F[1], B11 = F[2] * F[2] + F[3] * F[3];
-    const double J = std::fabs(F[0] * F[3] - F[1] * F[2]);
-    const double inv = 1.0 / std::sqrt(B00 + B11 + 2.0 * J); // F = 0 only: inf, V NaN, floored
-    const double V[DIM] = {(B00 + J) * inv, (B11 + J) * inv};
-    for (int d = 0; d < DIM; ++d) buf[d] = lp[d] * (V[d] > kMinStretch ? V[d] : kMinStretch);
+  // The current half-size: buf_d = lp_d max(V_dd, kMinStretch); F row-major D x D. 2D: the
+  // closed form above. 3D: V = Q diag(sqrt(lambda)) Q^T from the eigen decomposition of B = F F^T.
+  template <int D = DIM> static const double *half(const double *lp, const double *F, double *buf) {
+    static_assert(D == 2 || D == 3, "2D or 3D");
+    double V[D];
+    if constexpr (D == 2) {
+      const double B00 = F[0] * F[0] + F[1] * F[1], B11 = F[2] * F[2] + F[3] * F[3];
+      const double J = std::fabs(F[0] * F[3] - F[1] * F[2]);
+      const double inv = 1.0 / std::sqrt(B00 + B11 + 2.0 * J); // F = 0 only: inf, V NaN, floored
+      V[0] = (B00 + J) * inv;
+      V[1] = (B11 + J) * inv;
+    } else {
+      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> Fm(F);
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+      es.computeDirect(Fm * Fm.transpose());
+      const Eigen::Vector3d sl = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+      for (int d = 0; d < 3; ++d) {
+        V[d] = 0.0;
+        for (int i = 0; i < 3; ++i)
+          V[d] += sl[i] * es.eigenvectors()(d, i) * es.eigenvectors()(d, i);
+      }
+    }
+    for (int d = 0; d < D; ++d) buf[d] = lp[d] * (V[d] > kMinStretch ? V[d] : kMinStretch);
     return buf;
   }
 
