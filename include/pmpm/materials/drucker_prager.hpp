@@ -267,7 +267,8 @@ public:
                                const Options &o, std::unique_ptr<Material> &model);
   explicit DruckerPrager(const DruckerPragerParams &prm) : prm_(prm), k_(dp_coefficients(prm)) {}
   const char *model() const override { return kName; }
-  bool tangent(TangentModel &tm) const override;
+  bool has_tangent() const override { return true; }
+  void piola_tangent(const TangentPoint &pt, double *A) const override;
   double wave_modulus() const override { return prm_.el.M(); }
   bool rate_form() const override { return kRateForm; }
   bool plastic() const override { return kPlastic; }
