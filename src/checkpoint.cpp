@@ -542,10 +542,10 @@ PetscErrorCode WriteParticles(Simulation &sim, PetscViewer v) {
     // (free between steps), so a checkpoint costs no memory per particle (parallel_h5.hpp)
     const double *a = static_cast<const double *>(data);
     if (f.integer) {
-      sim.dudx.resize(std::max(sim.dudx.size(), static_cast<size_t>(n * bs)));
+      sim.scratch.dudx.resize(std::max(sim.scratch.dudx.size(), static_cast<size_t>(n * bs)));
       for (PetscInt i = 0; i < n * bs; ++i)
-        sim.dudx[i] = static_cast<double>(static_cast<PetscInt *>(data)[i]);
-      a = sim.dudx.data();
+        sim.scratch.dudx[i] = static_cast<double>(static_cast<PetscInt *>(data)[i]);
+      a = sim.scratch.dudx.data();
     }
     PetscCall(WriteRowsCollective(sim.comm, gid, f.name, n, bs, a, true));
     PetscCall(DMSwarmRestoreField(sim.parts.sw, f.name, &bs, &type, &data));

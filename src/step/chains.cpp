@@ -53,7 +53,7 @@ PetscErrorCode GridToPoints(StepState &S) {
   Grid &g = sim.grid;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.chain);
-  std::vector<double> &buf = sim.chain_buf, part;
+  std::vector<double> &buf = sim.scratch.chain_buf, part;
   buf.clear();
   G2PParams pc = S.pp; // the points' own PIC fraction (-chain_pic)
   pc.pic = sim.set.chain_pic;
