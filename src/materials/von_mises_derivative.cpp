@@ -1,5 +1,6 @@
-// The von Mises return's derivative (materials/von_mises.hpp), out of line: the consistent
-// tangent's one caller (VonMises::piola_tangent) and the return inlined into it alone.
+// The von Mises return's derivative (materials/von_mises.hpp), out of line: its one caller is
+// the consistent tangent (VonMises::piola_tangent), and the return is inlined into it alone,
+// apart from von_mises.cpp's explicit update.
 #include "pmpm/materials/von_mises.hpp"
 
 namespace pmpm {
