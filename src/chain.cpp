@@ -62,16 +62,11 @@ bool owned_by(const Grid &grid, const GridView &G, const double *x) {
   }
   return grid.owns_cell(cell);
 }
-} // namespace
 
-PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chain &c) {
+// The spec's own checks: a positive thickness and a line of at least two points running left to
+// right.
+PetscErrorCode CheckChainSpec(MPI_Comm comm, const ChainSpec &spec) {
   PetscFunctionBeginUser;
-  c.name = spec.name;
-  c.material = spec.material;
-  c.thickness = spec.thickness;
-  c.pin[0] = spec.pin_start;
-  c.pin[1] = spec.pin_end;
-  for (int d = 0; d < DIM; ++d) c.end_force[d] = spec.end_force[d];
   PetscCheck(spec.thickness > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "chain %s: the thickness must be > 0 (got %g)", spec.name.c_str(), spec.thickness);
   const size_t nv = spec.line.size() / DIM;
@@ -82,8 +77,12 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
                "chain %s: its points must run left to right (x increasing; vertex %zu at x = %g "
                "follows x = %g)",
                spec.name.c_str(), k, spec.line[k * DIM], spec.line[(k - 1) * DIM]);
+  PetscFunctionReturn(0);
+}
 
-  // the membrane's material: -mat_<material>_*
+// The membrane's material, -mat_<material>_*: its law, stiffness J, weight and mass per length.
+PetscErrorCode ReadMembraneMaterial(MPI_Comm comm, const ChainSpec &spec, Chain &c) {
+  PetscFunctionBeginUser;
   const std::string prefix = "mat_" + spec.material + "_";
   PetscBool hasE = PETSC_FALSE;
   double sigma_y = 0, H = 0;
@@ -130,8 +129,12 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   }
   c.line_weight = c.gamma * c.thickness;
   c.line_mass = c.density * c.thickness; // SimulationSetup may scale it
+  PetscFunctionReturn(0);
+}
 
-  // the interfaces on its faces: -chain_<name>_*
+// The interfaces on its faces, -chain_<name>_*: type, friction and adhesion of each face.
+PetscErrorCode ReadChainFaces(MPI_Comm comm, const ChainSpec &spec, Chain &c) {
+  PetscFunctionBeginUser;
   const std::string cp = "chain_" + spec.name + "_";
   double delta[2] = {-1, -1};
   PetscOptionsBegin(comm, cp.c_str(), ("Chain " + spec.name + ": interfaces").c_str(), nullptr);
@@ -171,8 +174,14 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
                    "-%sadhesion_%s must be >= 0 (got %g)", cp.c_str(), fname[k],
                    faces[k]->adhesion);
   }
+  PetscFunctionReturn(0);
+}
 
-  // points: each polyline piece divided evenly with spacing at most ds
+// The points: each polyline piece divided evenly with spacing at most ds; the segments' rest
+// lengths, the points' lengths of sheet, and every per-point and per-segment array at rest.
+PetscErrorCode PlaceChainPoints(MPI_Comm comm, const ChainSpec &spec, double ds, Chain &c) {
+  PetscFunctionBeginUser;
+  const size_t nv = spec.line.size() / DIM;
   PetscCheck(ds > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "chain point spacing must be > 0");
   c.x.clear();
   for (size_t k = 0; k + 1 < nv; ++k) {
@@ -204,6 +213,22 @@ PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chai
   c.p_top.assign(c.n, 0.0);
   c.p_bot.assign(c.n, 0.0);
   c.owned.assign(c.n, 0);
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode ChainCreate(MPI_Comm comm, const ChainSpec &spec, double ds, Chain &c) {
+  PetscFunctionBeginUser;
+  c.name = spec.name;
+  c.material = spec.material;
+  c.thickness = spec.thickness;
+  c.pin[0] = spec.pin_start;
+  c.pin[1] = spec.pin_end;
+  for (int d = 0; d < DIM; ++d) c.end_force[d] = spec.end_force[d];
+  PetscCall(CheckChainSpec(comm, spec));
+  PetscCall(ReadMembraneMaterial(comm, spec, c));
+  PetscCall(ReadChainFaces(comm, spec, c));
+  PetscCall(PlaceChainPoints(comm, spec, ds, c));
   PetscFunctionReturn(0);
 }
 
@@ -601,12 +626,141 @@ StackFace face_between(const std::vector<Chain> &chains, int lo, int hi) {
 }
 } // namespace
 
+namespace {
+constexpr int kMaxBodies = 8; // bodies per node contact_bodies handles (guarded at setup)
+
+// The k bodies with mass at one node (ids, in body order, msum their total mass): their masses
+// m, velocities after the step v and before it vold, and the node's common acceleration
+// acm = sum f / sum m (added to).
+void gather_bodies(const double *node, int k, const int *ids, double msum, double dt, double *m,
+                   double *v, double *vold, double *acm) {
+  constexpr int ND = GridDof::NDOF;
+  for (int q = 0; q < k; ++q) {
+    const double *nbk = node + ids[q] * ND;
+    m[q] = nbk[GridDof::M];
+    for (int d = 0; d < DIM; ++d) {
+      v[q * DIM + d] = nbk[GridDof::P + d];
+      vold[q * DIM + d] = nbk[GridDof::P + d] - dt * nbk[GridDof::F + d];
+      acm[d] += m[q] * nbk[GridDof::F + d] / msum;
+    }
+  }
+}
+
+// The faces between neighbouring bodies at the node (face_between): bonded where the chains give
+// no normal (nn <= kNoNormal); adhesion as an impulse capacity, adhesion times the sheet length at
+// the node times dt. A chain face's friction capacity: mu times the sheet's contact pressure
+// times its length at this node (chain_friction_capacity, from this step's normal pass), not mu
+// times this node's own normal impulse; passed as an impulse capacity (the adhesion slot,
+// counted only in contact). See chain_friction_capacity for why. The normal pass has neither.
+void node_faces(const double *node, const std::vector<Chain> &chains, int k, const int *ids,
+                double nn, double dt, bool normal_pass, StackFace *faces) {
+  for (int q = 0; q + 1 < k; ++q) {
+    faces[q] = face_between(chains, ids[q], ids[q + 1]);
+    if (nn <= kNoNormal) faces[q].type = FaceType::Bonded;
+    if (faces[q].adhesion > 0) {
+      double len = 0;
+      for (const Chain &c : chains)
+        if (c.body >= ids[q] && c.body <= ids[q + 1]) len += node[c.slot + ChainDof::LEN];
+      faces[q].adhesion *= len * dt;
+    }
+    if (normal_pass) {
+      faces[q].mu = faces[q].adhesion = 0;
+    } else if (faces[q].type != FaceType::Bonded) {
+      for (const Chain &c : chains) {
+        const double pl = c.body == ids[q]       ? node[c.slot + ChainDof::PTOP]
+                          : c.body == ids[q + 1] ? node[c.slot + ChainDof::PBOT]
+                                                 : -1.0;
+        if (pl < 0) continue;
+        faces[q].adhesion += faces[q].mu * pl; // pl is an impulse (N s/m)
+        faces[q].mu = 0;
+        break;
+      }
+    }
+  }
+}
+
+// The normal pass's result: each face's normal impulse on the chains' NTOP / NBOT slots.
+void store_normal_impulses(double *node, const std::vector<Chain> &chains, int k, const int *ids,
+                           const StackFaceResult *res) {
+  for (int q = 0; q + 1 < k; ++q)
+    for (const Chain &c : chains) {
+      if (c.body == ids[q]) node[c.slot + ChainDof::NTOP] = res[q].normal;
+      if (c.body == ids[q + 1]) node[c.slot + ChainDof::NBOT] = res[q].normal;
+    }
+}
+
+// The full pass's counts and impulses: the node's statistics, and on the chain's slots its
+// faces' friction impulses (along tau = -t, t = (-n_y, n_x) being contact_stack's tangent).
+void record_contact(double *node, const std::vector<Chain> &chains, int k, const int *ids,
+                    const StackFaceResult *res, double dt, ContactStats &st) {
+  st.contact_nodes += 1;
+  bool slipped = false, separated = false;
+  for (int q = 0; q + 1 < k; ++q) {
+    slipped = slipped || res[q].slip;
+    separated = separated || !res[q].contact;
+    if (res[q].normal > 0)
+      st.compression += res[q].normal;
+    else
+      st.tension -= res[q].normal;
+    for (size_t ci = 0; ci < chains.size(); ++ci) {
+      const Chain &c = chains[ci];
+      if (c.body == ids[q]) { // the chain is the lower body: its top face
+        node[c.slot + ChainDof::STOP] -= res[q].tangential;
+        st.friction[ci] -= res[q].tangential / dt;
+      } else if (c.body == ids[q + 1]) { // the upper body: its bottom face
+        node[c.slot + ChainDof::SBOT] += res[q].tangential;
+        st.friction[ci] += res[q].tangential / dt;
+      }
+    }
+  }
+  if (slipped) st.slip_nodes += 1;
+  if (separated) st.separated_nodes += 1;
+}
+
+// The bodies' new velocities and forces back on the node (held dofs zero).
+void scatter_bodies(double *node, int k, const int *ids, const double *v, const double *vold,
+                    const bool held[DIM], double dt) {
+  constexpr int ND = GridDof::NDOF;
+  for (int q = 0; q < k; ++q) {
+    double *nbk = node + ids[q] * ND;
+    for (int d = 0; d < DIM; ++d) {
+      const double vn = held[d] ? 0.0 : v[q * DIM + d];
+      nbk[GridDof::P + d] = vn;
+      nbk[GridDof::F + d] = held[d] ? 0.0 : (vn - vold[q * DIM + d]) / dt;
+    }
+  }
+}
+} // namespace
+
+// The tail rule. A continuum body with a tail share of the node (uGIMP blocks reach the next row of
+// nodes with weights down to 1e-8) has an unreliable own f/m there (interface.hpp): it takes the
+// common acceleration, and its force goes to the other bodies at the node in proportion
+// to their mass, so the node's momentum keeps every force (dropping the tail forces left
+// an unbalanced force of 150x the mean nodal load in the landfill, which never converged).
+// A sheet can be a tail too: with a small share of a node and no body on one side of it
+// there, its share of the point's load has nothing to rest on at this node (the body beneath
+// reaches the sheet's other row of nodes only: uGIMP blocks keep their size while the waste
+// compresses), contact separates it from the body above, and the point crept down at a rate
+// that falls with that share: the sinkhole's geostatic stage stalled at a ratio of 5e-4 for
+// 20,000 steps. Moving with the bodies at the node, it converges in 1,084 steps to 1e-4.
+// A body on that side with only a tail share counts as none: it takes the common
+// acceleration, so it holds nothing up either. Where a sheet turns over a convex corner
+// just under a node row (the slope's crest), the row above has the cover soil, a sliver of
+// the sheet and a tail of the waste; the sheet and the waste's tail, one block under the
+// normal projection, separated from the soil and ran at the sheet's own f / m (45 mm/s
+// against the crest's 0.3 mm/s), and that sliver of velocity, carried into the points, kept
+// the crest creeping: the slope's stage 2 at h = 0.25 m stopped at its 30,000-step cap
+// (ratio 1.8e-2); with this rule it converges in 3,588 steps
+// (docs/benchmarks/relaxation_steps.md).
+//
+// At every node with two bodies or more: the bodies with mass, the tail rule, the faces between
+// them, the normal from the chains' weighted point normals, and contact_stack's exchange.
 void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const ContactParams &prm,
                     bool normal_pass, ContactStats &st) {
-  constexpr int ND = GridDof::NDOF, MAXB = 8;
+  constexpr int ND = GridDof::NDOF;
   const double dt = prm.dt;
   const int nb = G.nbody;
-  if (nb > MAXB) return; // guarded at setup
+  if (nb > kMaxBodies) return; // guarded at setup
   if (!normal_pass) st.friction.assign(chains.size(), 0.0);
   for (PetscInt j = G.gs[1]; j < G.gs[1] + G.gm[1]; ++j)
     for (PetscInt i = G.gs[0]; i < G.gs[0] + G.gm[0]; ++i) {
@@ -614,52 +768,24 @@ void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const C
       double msum = 0;
       for (int b = 0; b < nb; ++b) msum += node[b * ND + GridDof::M];
       if (msum <= 0) continue;
-      int ids[MAXB], k = 0;
       // every body with mass takes part (a share cut-off at round-off level decided differently
-      // on different rank counts); tiny shares follow the tail rule below
+      // on different rank counts); tiny shares follow the tail rule (below)
+      int ids[kMaxBodies], k = 0;
       for (int b = 0; b < nb; ++b)
         if (node[b * ND + GridDof::M] > 0) ids[k++] = b;
       if (k < 2) continue;
       bool held[DIM];
       held_dofs(i, j, G.ncell, prm.face, held);
-      // the normal: the chains' weighted point normals at this node
-      double n[DIM] = {0, 0};
+      double n[DIM] = {0, 0}; // the chains' weighted point normals at this node
       for (const Chain &c : chains) {
         n[0] += node[c.slot + ChainDof::NX];
         n[1] += node[c.slot + ChainDof::NY];
       }
       const double nn = std::hypot(n[0], n[1]);
-      double m[MAXB], v[2 * MAXB], vold[2 * MAXB], acm[DIM] = {0, 0};
-      for (int q = 0; q < k; ++q) {
-        const double *nbk = node + ids[q] * ND;
-        m[q] = nbk[GridDof::M];
-        for (int d = 0; d < DIM; ++d) {
-          v[q * DIM + d] = nbk[GridDof::P + d];
-          vold[q * DIM + d] = nbk[GridDof::P + d] - dt * nbk[GridDof::F + d];
-          acm[d] += m[q] * nbk[GridDof::F + d] / msum;
-        }
-      }
-      // A continuum body with a tail share of the node (uGIMP blocks reach the next row of nodes
-      // with weights down to 1e-8) has an unreliable own f/m there (interface.hpp): it takes the
-      // common acceleration, and its force goes to the other bodies at the node in proportion
-      // to their mass, so the node's momentum keeps every force (dropping the tail forces left
-      // an unbalanced force of 150x the mean nodal load in the landfill, which never converged).
+      double m[kMaxBodies], v[DIM * kMaxBodies], vold[DIM * kMaxBodies], acm[DIM] = {0, 0};
+      gather_bodies(node, k, ids, msum, dt, m, v, vold, acm);
+      // the tail rule (above): tails take the common acceleration, the others share their force
       double ptot[DIM] = {0, 0}, pnew[DIM] = {0, 0}, mfull = 0;
-      // A sheet can be a tail too: with a small share of a node and no body on one side of it
-      // there, its share of the point's load has nothing to rest on at this node (the body beneath
-      // reaches the sheet's other row of nodes only: uGIMP blocks keep their size while the waste
-      // compresses), contact separates it from the body above, and the point crept down at a rate
-      // that falls with that share: the sinkhole's geostatic stage stalled at a ratio of 5e-4 for
-      // 20,000 steps. Moving with the bodies at the node, it converges in 1,084 steps to 1e-4.
-      // A body on that side with only a tail share counts as none: it takes the common
-      // acceleration, so it holds nothing up either. Where a sheet turns over a convex corner
-      // just under a node row (the slope's crest), the row above has the cover soil, a sliver of
-      // the sheet and a tail of the waste; the sheet and the waste's tail, one block under the
-      // normal projection, separated from the soil and ran at the sheet's own f / m (45 mm/s
-      // against the crest's 0.3 mm/s), and that sliver of velocity, carried into the points, kept
-      // the crest creeping: the slope's stage 2 at h = 0.25 m stopped at its 30,000-step cap
-      // (ratio 1.8e-2); with this rule it converges in 3,588 steps
-      // (docs/benchmarks/relaxation_steps.md).
       auto continuum_tail = [&](int q) { return ids[q] % 2 == 0 && m[q] < prm.tail_share * msum; };
       auto is_tail = [&](int q) {
         if (ids[q] % 2 == 0) return continuum_tail(q);
@@ -681,77 +807,17 @@ void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const C
       for (int q = 0; q < k; ++q)
         if (!is_tail(q))
           for (int d = 0; d < DIM; ++d) v[q * DIM + d] += (ptot[d] - pnew[d]) / mfull;
-      StackFace faces[MAXB];
-      StackFaceResult res[MAXB];
-      for (int q = 0; q + 1 < k; ++q) {
-        faces[q] = face_between(chains, ids[q], ids[q + 1]);
-        if (nn <= kNoNormal) faces[q].type = FaceType::Bonded;
-        if (faces[q].adhesion > 0) { // capacity: adhesion times the sheet length at the node
-          double len = 0;
-          for (const Chain &c : chains)
-            if (c.body >= ids[q] && c.body <= ids[q + 1]) len += node[c.slot + ChainDof::LEN];
-          faces[q].adhesion *= len * dt;
-        }
-        // A chain face's friction capacity: mu times the sheet's contact pressure times its
-        // length at this node (chain_friction_capacity, from this step's normal pass), not mu
-        // times this node's own normal impulse; passed as an impulse capacity (the adhesion
-        // slot, counted only in contact). See chain_friction_capacity for why.
-        if (normal_pass) {
-          faces[q].mu = faces[q].adhesion = 0;
-        } else if (faces[q].type != FaceType::Bonded) {
-          for (const Chain &c : chains) {
-            const double pl = c.body == ids[q]       ? node[c.slot + ChainDof::PTOP]
-                              : c.body == ids[q + 1] ? node[c.slot + ChainDof::PBOT]
-                                                     : -1.0;
-            if (pl < 0) continue;
-            faces[q].adhesion += faces[q].mu * pl; // pl is an impulse (N s/m)
-            faces[q].mu = 0;
-            break;
-          }
-        }
-      }
+      StackFace faces[kMaxBodies];
+      StackFaceResult res[kMaxBodies];
+      node_faces(node, chains, k, ids, nn, dt, normal_pass, faces);
       const double nu[DIM] = {nn > kNoNormal ? n[0] / nn : 0.0, nn > kNoNormal ? n[1] / nn : 1.0};
       contact_stack(k, m, v, faces, nu, res);
       if (normal_pass) { // the normal impulses only: they do not depend on the friction
-        for (int q = 0; q + 1 < k; ++q)
-          for (const Chain &c : chains) {
-            if (c.body == ids[q]) node[c.slot + ChainDof::NTOP] = res[q].normal;
-            if (c.body == ids[q + 1]) node[c.slot + ChainDof::NBOT] = res[q].normal;
-          }
+        store_normal_impulses(node, chains, k, ids, res);
         continue;
       }
-      st.contact_nodes += 1;
-      bool slipped = false, separated = false;
-      for (int q = 0; q + 1 < k; ++q) {
-        slipped = slipped || res[q].slip;
-        separated = separated || !res[q].contact;
-        if (res[q].normal > 0)
-          st.compression += res[q].normal;
-        else
-          st.tension -= res[q].normal;
-        // on the chain's slots: its faces' normal and friction impulses (friction along tau =
-        // -t, t = (-n_y, n_x) being contact_stack's tangent)
-        for (size_t ci = 0; ci < chains.size(); ++ci) {
-          const Chain &c = chains[ci];
-          if (c.body == ids[q]) { // the chain is the lower body: its top face
-            node[c.slot + ChainDof::STOP] -= res[q].tangential;
-            st.friction[ci] -= res[q].tangential / dt;
-          } else if (c.body == ids[q + 1]) { // the upper body: its bottom face
-            node[c.slot + ChainDof::SBOT] += res[q].tangential;
-            st.friction[ci] += res[q].tangential / dt;
-          }
-        }
-      }
-      if (slipped) st.slip_nodes += 1;
-      if (separated) st.separated_nodes += 1;
-      for (int q = 0; q < k; ++q) {
-        double *nbk = node + ids[q] * ND;
-        for (int d = 0; d < DIM; ++d) {
-          const double vn = held[d] ? 0.0 : v[q * DIM + d];
-          nbk[GridDof::P + d] = vn;
-          nbk[GridDof::F + d] = held[d] ? 0.0 : (vn - vold[q * DIM + d]) / dt;
-        }
-      }
+      record_contact(node, chains, k, ids, res, dt, st);
+      scatter_bodies(node, k, ids, v, vold, held, dt);
     }
 }
 

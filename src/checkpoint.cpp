@@ -39,17 +39,20 @@ PetscErrorCode RegisterEvents() {
   PetscFunctionReturn(0);
 }
 
+// The HDF5 attribute type of a number: double or PetscInt.
+template <class T>
+constexpr PetscDataType kNumberType = std::is_same_v<T, double> ? PETSC_REAL : PETSC_INT;
+static_assert(std::is_same_v<PetscReal, double> && !std::is_same_v<PetscInt, double>);
+
 // Attributes of an absolute group path.
-PetscErrorCode PutReal(PetscViewer v, const char *group, const char *name, double x) {
+template <class T>
+PetscErrorCode PutNumber(PetscViewer v, const char *group, const char *name, T x) {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5WriteAttribute(v, group, name, PETSC_REAL, &x));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, group, name, kNumberType<T>, &x));
   PetscFunctionReturn(0);
 }
-PetscErrorCode PutInt(PetscViewer v, const char *group, const char *name, PetscInt x) {
-  PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5WriteAttribute(v, group, name, PETSC_INT, &x));
-  PetscFunctionReturn(0);
-}
+constexpr auto PutReal = PutNumber<double>;
+constexpr auto PutInt = PutNumber<PetscInt>;
 PetscErrorCode PutString(PetscViewer v, const char *group, const char *name, const std::string &x) {
   PetscFunctionBeginUser;
   PetscCall(PetscViewerHDF5WriteAttribute(v, group, name, PETSC_STRING, x.c_str()));
@@ -65,20 +68,16 @@ PetscErrorCode Need(PetscViewer v, const char *group, const char *name, const st
              name);
   PetscFunctionReturn(0);
 }
-PetscErrorCode GetReal(PetscViewer v, const char *group, const char *name, const std::string &file,
-                       double *x) {
+template <class T>
+PetscErrorCode GetNumber(PetscViewer v, const char *group, const char *name,
+                         const std::string &file, T *x) {
   PetscFunctionBeginUser;
   PetscCall(Need(v, group, name, file));
-  PetscCall(PetscViewerHDF5ReadAttribute(v, group, name, PETSC_REAL, nullptr, x));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, group, name, kNumberType<T>, nullptr, x));
   PetscFunctionReturn(0);
 }
-PetscErrorCode GetInt(PetscViewer v, const char *group, const char *name, const std::string &file,
-                      PetscInt *x) {
-  PetscFunctionBeginUser;
-  PetscCall(Need(v, group, name, file));
-  PetscCall(PetscViewerHDF5ReadAttribute(v, group, name, PETSC_INT, nullptr, x));
-  PetscFunctionReturn(0);
-}
+constexpr auto GetReal = GetNumber<double>;
+constexpr auto GetInt = GetNumber<PetscInt>;
 PetscErrorCode GetString(PetscViewer v, const char *group, const char *name,
                          const std::string &file, std::string &x) {
   char *s = nullptr;
@@ -156,28 +155,6 @@ PetscErrorCode DatasetSize(PetscViewer v, const char *name, PetscInt *n) {
   H5Gclose(gid);
   PetscFunctionReturn(0);
 }
-
-// The chains' evolving arrays (per point or per segment), by name.
-struct ChainArrays {
-  const char *name;
-  std::vector<double> Chain::*member;
-};
-const ChainArrays kChainArrays[] = {
-    {"x", &Chain::x},
-    {"x0", &Chain::x0},
-    {"v", &Chain::v},
-    {"f", &Chain::f},
-    {"length", &Chain::length},
-    {"l0", &Chain::l0},
-    {"eps", &Chain::eps},
-    {"eps_p", &Chain::eps_p},
-    {"alpha", &Chain::alpha},
-    {"T", &Chain::T},
-    {"slip_top", &Chain::slip_top},
-    {"slip_bot", &Chain::slip_bot},
-    {"p_top", &Chain::p_top},
-    {"p_bot", &Chain::p_bot},
-};
 
 // The options that define the model a checkpoint holds: every option the run was given (command
 // line and options files), by lower-case name, except run control, which a restart may change:
@@ -349,43 +326,29 @@ PetscErrorCode CheckpointReadArray(PetscViewer v, const char *name, std::vector<
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckpointWriteReal(PetscViewer v, const char *name, double x) {
+template <class T> PetscErrorCode CheckpointWriteNumber(PetscViewer v, const char *name, T x) {
   char *group = nullptr;
   PetscFunctionBeginUser;
   PetscCall(PetscViewerHDF5GetGroup(v, nullptr, &group));
-  PetscCall(PutReal(v, group, name, x));
+  PetscCall(PutNumber(v, group, name, x));
   PetscCall(PetscFree(group));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckpointReadReal(PetscViewer v, const char *name, double *x) {
+template <class T> PetscErrorCode CheckpointReadNumber(PetscViewer v, const char *name, T *x) {
   char *group = nullptr;
   PetscFunctionBeginUser;
   PetscCall(PetscViewerHDF5GetGroup(v, nullptr, &group));
   const std::string g = group ? group : "/";
   PetscCall(PetscFree(group));
-  PetscCall(GetReal(v, g.c_str(), name, g_reading, x));
+  PetscCall(GetNumber(v, g.c_str(), name, g_reading, x));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckpointWriteInt(PetscViewer v, const char *name, PetscInt x) {
-  char *group = nullptr;
-  PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5GetGroup(v, nullptr, &group));
-  PetscCall(PutInt(v, group, name, x));
-  PetscCall(PetscFree(group));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode CheckpointReadInt(PetscViewer v, const char *name, PetscInt *x) {
-  char *group = nullptr;
-  PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5GetGroup(v, nullptr, &group));
-  const std::string g = group ? group : "/";
-  PetscCall(PetscFree(group));
-  PetscCall(GetInt(v, g.c_str(), name, g_reading, x));
-  PetscFunctionReturn(0);
-}
+template PetscErrorCode CheckpointWriteNumber<double>(PetscViewer, const char *, double);
+template PetscErrorCode CheckpointWriteNumber<PetscInt>(PetscViewer, const char *, PetscInt);
+template PetscErrorCode CheckpointReadNumber<double>(PetscViewer, const char *, double *);
+template PetscErrorCode CheckpointReadNumber<PetscInt>(PetscViewer, const char *, PetscInt *);
 
 PetscErrorCode CheckpointWriteRankShare(MPI_Comm comm, PetscViewer v, const char *name, double x) {
   PetscFunctionBeginUser;
@@ -455,6 +418,53 @@ struct AttrReader {
     PetscFunctionBeginUser;
     PetscCall(GetInt(v, group, name, file, &i));
     x = static_cast<E>(i);
+    PetscFunctionReturn(0);
+  }
+};
+
+// The two ends of Chain::checkpoint_arrays: each array a dataset of the current group (slack
+// flags as 0/1, the reactions as 4 values), written ...
+struct ChainArrayWriter {
+  PetscViewer v;
+  PetscErrorCode operator()(const char *name, std::vector<double> &a) const {
+    return CheckpointWriteArray(v, name, a);
+  }
+  PetscErrorCode operator()(const char *name, std::vector<char> &a) const {
+    return CheckpointWriteArray(v, name, std::vector<double>(a.begin(), a.end()));
+  }
+  PetscErrorCode operator()(const char *name, double (&r)[2][DIM]) const {
+    return CheckpointWriteArray(v, name, {r[0][0], r[0][1], r[1][0], r[1][1]});
+  }
+};
+// ... and read back, each of the length this run's chain has (else a damaged checkpoint).
+struct ChainArrayReader {
+  PetscViewer v;
+  const Chain &ch;
+  const std::string &file;
+  PetscErrorCode read(const char *name, size_t n, std::vector<double> &src) const {
+    PetscFunctionBeginUser;
+    PetscCall(CheckpointReadArray(v, name, src));
+    PetscCheck(src.size() == n, PetscObjectComm((PetscObject)v), PETSC_ERR_FILE_UNEXPECTED,
+               "-restart %s: damaged checkpoint (chain %s, %s: %d values for %d)", file.c_str(),
+               ch.name.c_str(), name, (int)src.size(), (int)n);
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode operator()(const char *name, std::vector<double> &a) const {
+    return read(name, a.size(), a);
+  }
+  PetscErrorCode operator()(const char *name, std::vector<char> &a) const {
+    std::vector<double> src;
+    PetscFunctionBeginUser;
+    PetscCall(read(name, a.size(), src));
+    for (size_t i = 0; i < src.size(); ++i) a[i] = src[i] != 0;
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode operator()(const char *name, double (&r)[2][DIM]) const {
+    std::vector<double> src;
+    PetscFunctionBeginUser;
+    PetscCall(read(name, 2 * DIM, src));
+    for (int e = 0; e < 2; ++e)
+      for (int d = 0; d < DIM; ++d) r[e][d] = src[e * DIM + d];
     PetscFunctionReturn(0);
   }
 };
@@ -532,10 +542,10 @@ PetscErrorCode WriteParticles(Simulation &sim, PetscViewer v) {
     // (free between steps), so a checkpoint costs no memory per particle (parallel_h5.hpp)
     const double *a = static_cast<const double *>(data);
     if (f.integer) {
-      sim.dudx.resize(std::max(sim.dudx.size(), static_cast<size_t>(n * bs)));
+      sim.scratch.dudx.resize(std::max(sim.scratch.dudx.size(), static_cast<size_t>(n * bs)));
       for (PetscInt i = 0; i < n * bs; ++i)
-        sim.dudx[i] = static_cast<double>(static_cast<PetscInt *>(data)[i]);
-      a = sim.dudx.data();
+        sim.scratch.dudx[i] = static_cast<double>(static_cast<PetscInt *>(data)[i]);
+      a = sim.scratch.dudx.data();
     }
     PetscCall(WriteRowsCollective(sim.comm, gid, f.name, n, bs, a, true));
     PetscCall(DMSwarmRestoreField(sim.parts.sw, f.name, &bs, &type, &data));
@@ -556,13 +566,7 @@ PetscErrorCode WriteChains(Simulation &sim, PetscViewer v) {
     PetscCall(PutInt(v, g, "points", ch.n));
     PetscCall(ch.checkpoint_fields(AttrWriter{v, g}));
     PetscCall(PetscViewerHDF5PushGroup(v, g));
-    for (const ChainArrays &a : kChainArrays)
-      PetscCall(CheckpointWriteArray(v, a.name, ch.*(a.member)));
-    PetscCall(
-        CheckpointWriteArray(v, "slack", std::vector<double>(ch.slack.begin(), ch.slack.end())));
-    PetscCall(CheckpointWriteArray(
-        v, "reaction",
-        {ch.reaction[0][0], ch.reaction[0][1], ch.reaction[1][0], ch.reaction[1][1]}));
+    PetscCall(ch.checkpoint_arrays(ChainArrayWriter{v}));
     PetscCall(PetscViewerHDF5PopGroup(v));
   }
   PetscFunctionReturn(0);
@@ -811,24 +815,7 @@ PetscErrorCode ReadChain(Simulation &sim, PetscViewer v, const std::string &file
              F, (int)k, cname.c_str(), (int)npts, ch.name.c_str(), ch.n);
   PetscCall(ch.checkpoint_fields(AttrReader{v, g, file}));
   PetscCall(PetscViewerHDF5PushGroup(v, g));
-  for (const ChainArrays &a : kChainArrays) {
-    std::vector<double> &dst = ch.*(a.member);
-    std::vector<double> src;
-    PetscCall(CheckpointReadArray(v, a.name, src));
-    PetscCheck(src.size() == dst.size(), sim.comm, PETSC_ERR_FILE_UNEXPECTED,
-               "-restart %s: damaged checkpoint (chain %s, %s: %d values for %d)", F,
-               ch.name.c_str(), a.name, (int)src.size(), (int)dst.size());
-    dst = src;
-  }
-  std::vector<double> slack, reac;
-  PetscCall(CheckpointReadArray(v, "slack", slack));
-  PetscCall(CheckpointReadArray(v, "reaction", reac));
-  PetscCheck(slack.size() == ch.slack.size() && reac.size() == 4, sim.comm,
-             PETSC_ERR_FILE_UNEXPECTED, "-restart %s: damaged checkpoint (chain %s)", F,
-             ch.name.c_str());
-  for (size_t i = 0; i < slack.size(); ++i) ch.slack[i] = slack[i] != 0;
-  for (int e = 0; e < 2; ++e)
-    for (int d = 0; d < DIM; ++d) ch.reaction[e][d] = reac[e * DIM + d];
+  PetscCall(ch.checkpoint_arrays(ChainArrayReader{v, ch, file}));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscFunctionReturn(0);
 }

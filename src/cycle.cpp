@@ -96,7 +96,8 @@ template <class Shape> PetscErrorCode MuslRemap(StepState &S) {
   PetscCall(GridRestoreGlobal(g, G));
   PetscCall(GridGlobalToLocal(g));
   PetscCall(GridGetLocal(g, false, G));
-  g2p_kinematics<Shape>(S.P, G, S.G1, g, S.pp, sim.wave_modulus.data(), sim.dudx.data(), S.rep.g2p);
+  g2p_kinematics<Shape>(S.P, G, S.G1, g, S.pp, sim.wave_modulus.data(), sim.scratch.dudx.data(),
+                        S.rep.g2p);
   PetscCall(GridRestoreLocal(g, G));
   PetscFunctionReturn(0);
 }
@@ -115,7 +116,7 @@ PetscErrorCode GridToParticles(StepState &S, const ActiveHooks &h, const double 
   pp.pic = sim.set.pic;
   for (int d = 0; d < DIM; ++d) pp.gdir[d] = S.load.gdir[d];
   pp.elastic = elastic;
-  pp.hoop = sim.hoop.empty() ? nullptr : sim.hoop.data(); // -geometry axisymmetric
+  pp.hoop = sim.scratch.hoop.empty() ? nullptr : sim.scratch.hoop.data(); // -geometry axisymmetric
   if (elastic && sim.step_energy) { // relaxation's energy check: G2P sums the elastic energy
     for (const auto &m : sim.mats) energy.insert(energy.end(), {m.el.E, m.el.nu});
     pp.energy = energy.data();
@@ -125,7 +126,8 @@ PetscErrorCode GridToParticles(StepState &S, const ActiveHooks &h, const double 
     PmpmLogEventScope(step_events.g2p);
     PetscCall(GridGetLocal(sim.grid, false, G));
     if (!sim.set.musl)
-      g2p<Shape>(S.P, G, S.G1, sim.grid, pp, sim.wave_modulus.data(), sim.dudx.data(), S.rep.g2p);
+      g2p<Shape>(S.P, G, S.G1, sim.grid, pp, sim.wave_modulus.data(), sim.scratch.dudx.data(),
+                 S.rep.g2p);
     else
       g2p_velocity<Shape>(S.P, G, S.G1, pp);
     PetscCall(GridRestoreLocal(sim.grid, G));
@@ -152,7 +154,8 @@ PetscErrorCode StressUpdate(StepState &S, const ActiveHooks &h, bool fused) {
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.stress);
   PetscCall(RunHooks(h, &StepHook::stress, S));
-  if (!fused) UpdateStresses(S.sim, S.sim.dudx.data(), S.P.F, S.P.stress, S.P.eps_p, S.eigen);
+  if (!fused)
+    UpdateStresses(S.sim, S.sim.scratch.dudx.data(), S.P.F, S.P.stress, S.P.eps_p, S.eigen);
   PetscFunctionReturn(0);
 }
 

@@ -1,19 +1,10 @@
 #include "pmpm/implicit_kernels.hpp"
+#include "pmpm/materials/tangent.hpp"
 #include <cmath>
 
 namespace pmpm {
 
 namespace {
-inline MatN mat_of(const double *a) {
-  MatN m;
-  m << a[0], a[1], a[2], a[3];
-  return m;
-}
-inline MatN in_plane(const double *s) { // Cauchy stress xx yy zz xy -> in-plane 2x2
-  MatN m;
-  m << s[0], s[3], s[3], s[1];
-  return m;
-}
 // V^n J sigma' of the reset grid's force (implicit_kernels.hpp), J = det(I + G)
 inline MatN current_stress_volume(double V, const double *G, const double *stress) {
   return V * (MatN::Identity() + mat_of(G)).determinant() * in_plane(stress);
@@ -140,78 +131,6 @@ void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], doub
           K[(k * DIM + a) * ND + (m * DIM + c)] += v;
         }
   }
-}
-
-// Directional derivatives dP[dG] for the DIM^2 unit directions dG = e_b (x) e_l, with
-// f = I + G, J = det f, dJ = J tr(f^-1 dG), d(f^-T) = -f^-T dG^T f^-T:
-//   linear elastic:  P = J s' f^-T, ds' = dW s - s dW + lambda tr(dG) I + 2 mu sym(dG),
-//                    dW = skew(dG) (the Jaumann update is linear in G; s the committed stress)
-//                    dP = J (tr(f^-1 dG) s' + ds' - s' f^-T dG^T) f^-T
-//   plastic (von Mises, Drucker-Prager): s' = return(s_tr), s_tr = s + W s - s W + C : (sym(G) -
-//   e*)
-//                    (3 x 3: sigma_zz is part of the trial state and of the return), so
-//                    ds' = D : ds_tr with D the return's derivative at s_tr (ReturnDerivative),
-//                    ds_tr = dW s - s dW + lambda tr(dG) I + 2 mu sym(dG); dP as above
-//   neo-Hookean:     P = tau f^-T / J^n, tau = mu (B - I) + lambda ln(J_tot) I, F_tot = f F^n
-//                    dtau = mu (dF F_tot^T + F_tot dF^T) + lambda tr(f^-1 dG) I, dF = dG F^n
-//                    dP = (dtau - tau f^-T dG^T) f^-T / J^n
-void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
-                   const double *s_new, const double *Fn, double eps_p, double *A,
-                   const double *eigen) {
-  const TangentKind kind = tm.kind;
-  const ElasticConstants &el = tm.el;
-  const MatN I = MatN::Identity();
-  const MatN f = I + mat_of(G), fi = f.inverse(), fiT = fi.transpose();
-  // the rate-form update reads the midpoint gradient Gm = (I + G/2)^-1 G, dGm = Hi dG Hi
-  const MatN Hi = (I + 0.5 * mat_of(G)).inverse(), Gm = Hi * mat_of(G);
-  const double gm[DIM * DIM] = {Gm(0, 0), Gm(0, 1), Gm(1, 0), Gm(1, 1)};
-  const double J = f.determinant(), lam = el.lambda(), mu = el.G();
-  const MatN sn = in_plane(s_new), so = in_plane(s_old);
-  const MatN Fo = mat_of(Fn), Ft = f * Fo;
-  const double Jn = Fo.determinant();
-  const MatN tau = mu * (Ft * Ft.transpose() - I) + lam * std::log(Ft.determinant()) * I;
-  const bool plastic = kind == TangentKind::VonMises || kind == TangentKind::DruckerPrager;
-  ReturnDerivative D;
-  Mat3 so3 = Mat3::Zero();
-  if (plastic) { // the trial stress exactly as predictor_corrector forms it
-    so3 = stress_to_tensor(s_old);
-    Mat3 de, dw;
-    strain_and_spin(gm, de, dw);
-    if (eigen)
-      for (int d = 0; d < 3; ++d) de(d, d) -= eigen[d];
-    const Mat3 s_tr = jaumann_rotate(so3, dw) + elastic_increment(el, de);
-    D = kind == TangentKind::VonMises
-            ? von_mises_return_derivative(tm.vm, s_tr, eps_p)
-            : drucker_prager_return_derivative(tm.dp, tm.dpk, s_tr, eps_p);
-  }
-  for (int b = 0; b < DIM; ++b)
-    for (int l = 0; l < DIM; ++l) {
-      MatN dG = MatN::Zero();
-      dG(b, l) = 1.0;
-      const double dtr = (fi * dG).trace();
-      MatN dP;
-      if (kind == TangentKind::NeoHookean) {
-        const MatN dF = dG * Fo;
-        const MatN dtau = mu * (dF * Ft.transpose() + Ft * dF.transpose()) + lam * dtr * I;
-        dP = (dtau - tau * fiT * dG.transpose()) * fiT / Jn;
-      } else if (plastic) {
-        const MatN dGm = Hi * dG * Hi;
-        const double g[DIM * DIM] = {dGm(0, 0), dGm(0, 1), dGm(1, 0), dGm(1, 1)};
-        Mat3 de, dw;
-        strain_and_spin(g, de, dw);
-        const Mat3 ds3 = D.apply(dw * so3 - so3 * dw + elastic_increment(el, de));
-        MatN ds;
-        ds << ds3(0, 0), ds3(0, 1), ds3(1, 0), ds3(1, 1);
-        dP = J * (dtr * sn + ds - sn * fiT * dG.transpose()) * fiT;
-      } else {
-        const MatN dGm = Hi * dG * Hi;
-        const MatN dW = 0.5 * (dGm - dGm.transpose()), de = 0.5 * (dGm + dGm.transpose());
-        const MatN ds = dW * so - so * dW + lam * dGm.trace() * I + 2.0 * mu * de;
-        dP = J * (dtr * sn + ds - sn * fiT * dG.transpose()) * fiT;
-      }
-      for (int a = 0; a < DIM; ++a)
-        for (int j = 0; j < DIM; ++j) A[(a * DIM + j) * DIM * DIM + (b * DIM + l)] = dP(a, j);
-    }
 }
 
 template <class Shape>

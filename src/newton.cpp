@@ -86,7 +86,6 @@ struct NewtonSolver final : EquilibriumSolver {
   double t_stage = 0;       // wall time at the stage's start (the progress lines' ETA)
   double shrink = 0;        // the current load step's share of the stage's shrinkage
   double kref = 1;          // diagonal of held and unsupported dofs (Pa: the stiffness scale)
-  std::vector<TangentModel> model; // per material: what its consistent tangent needs
   PetscInt width = 2;              // the solve's stencil width (the shape's support)
   std::vector<double> G, Gm, Fnew, snew, epsp, Pk, blocks;
   std::vector<double> eigen; // the load step's eigenstrain increment, 3 per particle (or empty)
@@ -265,7 +264,7 @@ template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
   PetscCall(TrialState<Shape>(ns, U, P));
   for (PetscInt p = 0; p < P.n; ++p) {
     const PetscInt mat = P.mat[p];
-    piola_tangent(ns.model[mat], &ns.G[p * DIM * DIM], P.stress + p * NSTRESS,
+    piola_tangent(*sim.mats[mat].model, &ns.G[p * DIM * DIM], P.stress + p * NSTRESS,
                   &ns.snew[p * NSTRESS], P.F + p * DIM * DIM, P.eps_p[p], A,
                   ns.eigen.empty() ? nullptr : &ns.eigen[3 * p]);
     weights<Shape>(P.x + p * DIM, P.lp + p * DIM, sim.grid.origin, sim.grid.h, W);
@@ -696,7 +695,7 @@ PetscErrorCode ReleaseStart(NewtonSolver &ns) {
 }
 
 // What Newton cannot solve yet: a clear error, never a silent wrong answer.
-PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver &ns) {
+PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver & /*ns*/) {
   const char *fix = "; use -solver relaxation";
   PetscFunctionBeginUser;
   // membrane chains: bonded on both faces, the bodies and the sheet then share one field
@@ -731,10 +730,9 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver &ns) {
              fix);
   PetscCheck(sim.set.restart.empty() && sim.set.checkpoint_every == 0, sim.comm, PETSC_ERR_SUP,
              "-solver newton does not support -restart or -checkpoint_every yet%s", fix);
-  ns.model.assign(sim.mats.size(), TangentModel{});
   for (size_t k = 0; k < sim.mats.size(); ++k) {
     const Material &m = *sim.mats[k].model;
-    PetscCheck(m.tangent(ns.model[k]), sim.comm, PETSC_ERR_SUP,
+    PetscCheck(m.has_tangent(), sim.comm, PETSC_ERR_SUP,
                "-solver newton does not support -mat_%s_model %s yet (it has no consistent "
                "tangent)%s",
                sim.mats[k].name.c_str(), m.model(), fix);

@@ -113,7 +113,7 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
   const PetscInt n = P.n;
   // The fields that are not stored go through the step's scratch (L dt per particle between G2P
   // and the stress update, free between steps): no new memory.
-  std::vector<double> &derived = sim.dudx;
+  std::vector<double> &derived = sim.scratch.dudx;
   derived.resize(std::max(derived.size(), static_cast<size_t>(n * DIM)));
   PetscCall(PetscViewerHDF5Open(sim.comm, (path + ".tmp").c_str(), FILE_MODE_WRITE, &v));
   PetscCall(PetscViewerHDF5PushGroup(v, "/particles"));

@@ -313,8 +313,9 @@ PetscErrorCode SimulationIndexParticles(Simulation &sim) {
     sim.mat_idx[P.mat[p]].push_back(static_cast<int>(p));
     if (P.load[p] >= 0) sim.traction_idx.push_back(p);
   }
-  sim.dudx.resize(static_cast<size_t>(P.n) * DIM * DIM);
-  if (sim.set.geometry == Geometry::Axisymmetric) sim.hoop.resize(static_cast<size_t>(P.n) * 2);
+  sim.scratch.dudx.resize(static_cast<size_t>(P.n) * DIM * DIM);
+  if (sim.set.geometry == Geometry::Axisymmetric)
+    sim.scratch.hoop.resize(static_cast<size_t>(P.n) * 2);
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscFunctionReturn(0);
 }

@@ -15,7 +15,7 @@ void UpdateStresses(Simulation &sim, const double *dudx, const double *F, double
     b.stress = stress;
     b.eps_p = eps_p;
     b.eigen = eigen;
-    b.hoop = sim.hoop.empty() ? nullptr : sim.hoop.data(); // -geometry axisymmetric
+    b.hoop = sim.scratch.hoop.empty() ? nullptr : sim.scratch.hoop.data(); // -geometry axisymmetric
     sim.mats[m].model->update_stress(b);
   }
 }

@@ -109,7 +109,7 @@ struct Chain {
   double wave_speed() const { return std::sqrt(law.J / line_mass); }
 
   // The checkpointed scalars (checkpoint.cpp, /chains/<k> attributes): f(name, field) for each;
-  // the evolving arrays are kChainArrays there.
+  // the evolving arrays are checkpoint_arrays'.
   template <class F> PetscErrorCode checkpoint_fields(F &&f) {
     PetscFunctionBeginUser;
     PetscCall(f("top_type", top.type));
@@ -118,6 +118,29 @@ struct Chain {
     PetscCall(f("bottom_mu", bottom.mu));
     PetscCall(f("line_mass", line_mass));
     PetscCall(f("friction_force", friction_force));
+    PetscFunctionReturn(0);
+  }
+  // The checkpointed arrays (checkpoint.cpp, /chains/<k> datasets): f(name, array) for each of
+  // the evolving per-point and per-segment arrays, the segments' slack flags and the pinned ends'
+  // reactions.
+  template <class F> PetscErrorCode checkpoint_arrays(F &&f) {
+    PetscFunctionBeginUser;
+    PetscCall(f("x", x));
+    PetscCall(f("x0", x0));
+    PetscCall(f("v", v));
+    PetscCall(f("f", this->f));
+    PetscCall(f("length", length));
+    PetscCall(f("l0", l0));
+    PetscCall(f("eps", eps));
+    PetscCall(f("eps_p", eps_p));
+    PetscCall(f("alpha", alpha));
+    PetscCall(f("T", T));
+    PetscCall(f("slip_top", slip_top));
+    PetscCall(f("slip_bot", slip_bot));
+    PetscCall(f("p_top", p_top));
+    PetscCall(f("p_bot", p_bot));
+    PetscCall(f("slack", slack));
+    PetscCall(f("reaction", reaction));
     PetscFunctionReturn(0);
   }
 };

@@ -34,11 +34,13 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file);
 // an array every rank holds alike (written from rank 0; read onto every rank) ...
 PetscErrorCode CheckpointWriteArray(PetscViewer v, const char *name, const std::vector<double> &a);
 PetscErrorCode CheckpointReadArray(PetscViewer v, const char *name, std::vector<double> &a);
-// ... and one number (an attribute of the group).
-PetscErrorCode CheckpointWriteReal(PetscViewer v, const char *name, double x);
-PetscErrorCode CheckpointReadReal(PetscViewer v, const char *name, double *x);
-PetscErrorCode CheckpointWriteInt(PetscViewer v, const char *name, PetscInt x);
-PetscErrorCode CheckpointReadInt(PetscViewer v, const char *name, PetscInt *x);
+// ... and one number (an attribute of the group), T double or PetscInt.
+template <class T> PetscErrorCode CheckpointWriteNumber(PetscViewer v, const char *name, T x);
+template <class T> PetscErrorCode CheckpointReadNumber(PetscViewer v, const char *name, T *x);
+inline constexpr auto CheckpointWriteReal = CheckpointWriteNumber<double>;
+inline constexpr auto CheckpointReadReal = CheckpointReadNumber<double>;
+inline constexpr auto CheckpointWriteInt = CheckpointWriteNumber<PetscInt>;
+inline constexpr auto CheckpointReadInt = CheckpointReadNumber<PetscInt>;
 // For EquilibriumSolver::checkpoint_write / checkpoint_read: each rank's share of a sum (one
 // dataset of the current group, one entry per rank), and back: on the rank count that wrote it
 // each rank's own share, on another the whole sum on rank 0. `ranks`: the writer's rank count.

@@ -7,6 +7,7 @@
 #pragma once
 #include "pmpm/config.hpp"
 #include <petscdmda.h>
+#include <type_traits>
 
 namespace pmpm {
 
@@ -101,10 +102,42 @@ PetscErrorCode GridRestoreLocal(Grid &g, GridView &v);
 // nodes of the local vector (a view that aliases GridGetLocal's: read and write different slots).
 PetscErrorCode GridGetGlobal(Grid &g, GridView &v);
 PetscErrorCode GridRestoreGlobal(Grid &g, GridView &v);
+// f(view) between GridGetLocal (zero as there) and GridRestoreLocal, or between GridGetGlobal and
+// GridRestoreGlobal: a view that lives for one piece of work. f returns nothing or an error code.
+template <class F> PetscErrorCode GridWithLocal(Grid &g, bool zero, F &&f);
+template <class F> PetscErrorCode GridWithGlobal(Grid &g, F &&f);
 // Sum the ghosted local contributions into the global vector (ADD_VALUES); with shared, nothing.
 PetscErrorCode GridLocalToGlobalAdd(Grid &g);
 // Scatter owned values (and ghosts) back into the local vector, and zero the ghost nodes outside
 // the box; with shared, only the latter.
 PetscErrorCode GridGlobalToLocal(Grid &g);
+
+namespace detail {
+template <class F> PetscErrorCode CallOnView(F &f, GridView &v) {
+  if constexpr (std::is_void_v<decltype(f(v))>) {
+    f(v);
+    return 0;
+  } else {
+    return f(v);
+  }
+}
+} // namespace detail
+
+template <class F> PetscErrorCode GridWithLocal(Grid &g, bool zero, F &&f) {
+  GridView v;
+  PetscFunctionBeginUser;
+  PetscCall(GridGetLocal(g, zero, v));
+  PetscCall(detail::CallOnView(f, v));
+  PetscCall(GridRestoreLocal(g, v));
+  PetscFunctionReturn(0);
+}
+template <class F> PetscErrorCode GridWithGlobal(Grid &g, F &&f) {
+  GridView v;
+  PetscFunctionBeginUser;
+  PetscCall(GridGetGlobal(g, v));
+  PetscCall(detail::CallOnView(f, v));
+  PetscCall(GridRestoreGlobal(g, v));
+  PetscFunctionReturn(0);
+}
 
 } // namespace pmpm

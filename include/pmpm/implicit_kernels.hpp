@@ -16,8 +16,6 @@
 // internal force, so equilibrium at the start of a step is relaxation's equilibrium.
 #pragma once
 #include "pmpm/material.hpp"
-#include "pmpm/materials/drucker_prager.hpp"
-#include "pmpm/materials/von_mises.hpp"
 #include "pmpm/particles.hpp"
 #include "pmpm/shape.hpp"
 
@@ -33,25 +31,6 @@ struct NodalView {
   double *node(PetscInt i, PetscInt j) const {
     return data + ((j - gs[1]) * gm[0] + (i - gs[0])) * DIM;
   }
-};
-
-// The materials that have a consistent tangent (others are refused by -solver newton).
-enum class TangentKind {
-  None = 0,
-  LinearElastic = 1,
-  NeoHookean = 2,
-  VonMises = 3,
-  DruckerPrager = 4
-};
-
-// What the tangent needs of a material: its kind, elastic constants and, for the plastic ones,
-// the return map's parameters (the tangent differentiates that same return).
-struct TangentModel {
-  TangentKind kind = TangentKind::None;
-  ElasticConstants el;
-  VonMisesParams vm;      // kind VonMises
-  DruckerPragerParams dp; // kind DruckerPrager
-  DPCoefficients dpk{0, 0, 0};
 };
 
 // G_p = sum_i (mask_i du_i) (x) grad S_i(x_p), row-major (G[a * DIM + j] = d du_a / d x_j);
@@ -104,17 +83,24 @@ void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], doub
                               const double gw[DIM], double *K);
 
 // A = dP / dG (DIM^2 x DIM^2, A[(a DIM + j) DIM^2 + (b DIM + l)] = dP_aj / dG_bl) of one particle,
-// exact for the material's update: linear elastic (Jaumann rate, the explicit update with
-// dudx = G_m, through dG_m = H^-1 dG H^-1, H = I + G/2), neo-Hookean, or the rate-form plastic
-// models (the same elastic predictor followed by the return map, differentiated through it: the
-// consistent tangent). s_old: committed stress; s_new: the stress at G (after the return); Fn:
-// committed F; eps_p: committed equivalent plastic strain (plastic models only). eigen (3 values xx
-// yy zz, or null): the step's eigenstrain increment (degradation.hpp), which the rate-form update
-// subtracts from sym(G): a stress-free strain, so it moves the plastic models' trial stress (and so
-// their return) but adds no term of its own.
-void piola_tangent(const TangentModel &tm, const double *G, const double *s_old,
-                   const double *s_new, const double *Fn, double eps_p, double *A,
-                   const double *eigen = nullptr);
+// exact for its material's update: the law's own tangent (Material::piola_tangent; the laws'
+// formulas in materials/tangent.hpp). s_old: committed stress; s_new: the stress at G (after the
+// update); Fn: committed F; eps_p: committed equivalent plastic strain (plastic models only).
+// eigen (3 values xx yy zz, or null): the step's eigenstrain increment (degradation.hpp), which
+// the rate-form update subtracts from sym(G): a stress-free strain, so it moves the plastic
+// models' trial stress (and so their return) but adds no term of its own.
+inline void piola_tangent(const Material &m, const double *G, const double *s_old,
+                          const double *s_new, const double *Fn, double eps_p, double *A,
+                          const double *eigen = nullptr) {
+  TangentPoint pt;
+  pt.G = G;
+  pt.s_old = s_old;
+  pt.s_new = s_new;
+  pt.Fn = Fn;
+  pt.eps_p = eps_p;
+  pt.eigen = eigen;
+  m.piola_tangent(pt, A);
+}
 
 // One particle's stiffness over its support: the NN nodes of weights() (node k at base +
 // (k % NS, k / NS)); K[(k DIM + a) (NN DIM) + (m DIM + b)] = V sum_jl dS_k/dx_j A_ajbl dS_m/dx_l.

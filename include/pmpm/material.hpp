@@ -13,8 +13,6 @@
 
 namespace pmpm {
 
-struct TangentModel; // implicit_kernels.hpp: what -solver newton's consistent tangent needs
-
 // Plain views over particle arrays; idx lists the particles this material owns.
 struct StressBatch {
   int n = 0;                    // number of particles in idx
@@ -50,6 +48,17 @@ inline double elastic_energy(double E, double nu, double V, const double *s) {
   return V * ((sq - 2 * nu * cross) + 2 * (1 + nu) * s[3] * s[3]) / (2 * E);
 }
 
+// One particle's state at which -solver newton differentiates the update (piola_tangent,
+// implicit_kernels.hpp): the step's increment gradient G (DIM x DIM, row-major; the rate-form
+// update reads its midpoint gradient (I + G/2)^-1 G), the committed stress s_old, the stress s_new
+// at G (after the update), the committed F (Fn) and eps_p, and the step's eigenstrain increment
+// (3 values xx yy zz, or null; StressBatch::eigen).
+struct TangentPoint {
+  const double *G = nullptr, *s_old = nullptr, *s_new = nullptr, *Fn = nullptr;
+  double eps_p = 0;
+  const double *eigen = nullptr;
+};
+
 class Material {
 public:
   virtual ~Material() = default;
@@ -67,9 +76,13 @@ public:
   // update the stress in its own particle loop (elastic_rate_update, elastic.hpp). False for
   // every other model.
   virtual bool linear_elastic_rate(double & /*lambda*/, double & /*G2*/) const { return false; }
-  // -solver newton: what the consistent tangent (piola_tangent, implicit_kernels.hpp) needs of
-  // this model, set once per material before the solve. False: the model has none (refused).
-  virtual bool tangent(TangentModel & /*tm*/) const { return false; }
+  // -solver newton: true when the model has a consistent tangent (piola_tangent below); false:
+  // -solver newton refuses it.
+  virtual bool has_tangent() const { return false; }
+  // The consistent tangent A = dP / dG (DIM^2 x DIM^2, A[(a DIM + j) DIM^2 + (b DIM + l)] =
+  // dP_aj / dG_bl) of one particle at pt, P = J sigma' f^-T (implicit_kernels.hpp): exact for this
+  // model's update_stress as -solver newton calls it. Called only when has_tangent().
+  virtual void piola_tangent(const TangentPoint & /*pt*/, double * /*A*/) const {}
 };
 
 // Small-strain increment and spin from L*dt (3x3, plane strain: zz rows/cols zero).

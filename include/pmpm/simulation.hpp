@@ -180,6 +180,17 @@ struct RunState {
   }
 };
 
+// The step's work arrays: refilled every step, never read across steps (nor checkpointed).
+struct Scratch {
+  std::vector<double> dudx;       // L dt per particle (G2P's velocity gradient times dt)
+  std::vector<double> hoop;       // -geometry axisymmetric: hoop increment and stretch (2 each)
+  std::vector<int> fbar_group;    // -fbar: each particle's cell and body
+  std::vector<double> fbar_sums;  // -fbar: volumes per group
+  std::vector<double> fbar_shift; // -fbar: group pressure less the particle's
+  std::vector<double> eigen;      // the step's eigenstrain increments (3 per particle)
+  std::vector<double> chain_buf;  // the chains' points packed for their allreduce
+};
+
 struct Simulation {
   MPI_Comm comm = PETSC_COMM_WORLD;
   PetscMPIInt rank = 0, size = 1;
@@ -208,16 +219,11 @@ struct Simulation {
   ContactParams contact;                 // stacked-body contact at chain nodes
   ContactStats contact_stats;            // last step's (global)
   double contact_impulse[2] = {0, 0};    // chain faces' normal impulse over the run: +, -
-  std::vector<double> chain_buf;         // scratch for the chains' allreduce
   std::vector<double> wave_modulus;      // per material
   std::vector<std::vector<int>> mat_idx; // particles of each material (this rank)
   std::vector<ParticleLoad> loads;       // surface loads, every rank alike (particles.hpp)
   std::vector<PetscInt> traction_idx;    // particles carrying a surface load (this rank)
-  std::vector<double> dudx;              // L dt per particle (scratch)
-  std::vector<double> hoop;              // axisymmetric: hoop increment, stretch (2, scratch)
-  std::vector<int> fbar_group;           // -fbar: each particle's cell and body (scratch)
-  std::vector<double> fbar_sums;         // -fbar: volumes per group (scratch)
-  std::vector<double> fbar_shift;        // -fbar: group pressure less the particle's (scratch)
+  Scratch scratch;                       // the step's work arrays
   // The next Step sums the particles' elastic energy in G2P when its stress update is fused
   // there (relaxation's energy check; StepReport's g2p.has_elastic says whether it did).
   bool step_energy = false;
@@ -232,7 +238,6 @@ struct Simulation {
   PetscInt stage_ramp = 0;
   double stage_shrink = 0;
   Shrinkage shrink;
-  std::vector<double> eigen; // eigenstrain increments (scratch, 3 per particle)
   RunState run;
   PetscInt particles_setup = 0; // particles the scene generated (a checkpoint must match)
   // -restart: the stage loop resumes at `stage`, inside it (after run.stage_step steps) when

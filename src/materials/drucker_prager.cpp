@@ -1,7 +1,7 @@
-// Drucker-Prager: its options, their checks, and what its Newton tangent needs.
+// Drucker-Prager: its options, their checks, and its Newton tangent.
 #include "pmpm/materials/drucker_prager.hpp"
-#include "pmpm/implicit_kernels.hpp"
 #include "pmpm/materials/registry.hpp"
+#include "pmpm/materials/tangent.hpp"
 #include "pmpm/options.hpp"
 
 namespace pmpm {
@@ -58,12 +58,11 @@ PetscErrorCode DruckerPrager::Create(MPI_Comm comm, const std::string &prefix,
   PetscFunctionReturn(0);
 }
 
-bool DruckerPrager::tangent(TangentModel &tm) const {
-  tm.kind = TangentKind::DruckerPrager;
-  tm.dp = prm_;
-  tm.dpk = k_;
-  tm.el = prm_.el;
-  return true;
+void DruckerPrager::piola_tangent(const TangentPoint &pt, double *A) const {
+  const TangentKinematics k(pt);
+  const ReturnDerivative D =
+      drucker_prager_return_derivative(prm_, k_, trial_stress(prm_.el, k, pt), pt.eps_p);
+  plastic_piola_tangent(prm_.el, k, pt, D, A);
 }
 
 } // namespace pmpm

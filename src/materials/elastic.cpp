@@ -1,7 +1,7 @@
 // Linear elastic and neo-Hookean: no options of their own (-E and -nu are every material's), and
-// what their Newton tangents need.
+// their Newton tangents (materials/tangent.hpp).
 #include "pmpm/materials/elastic.hpp"
-#include "pmpm/implicit_kernels.hpp"
+#include "pmpm/materials/tangent.hpp"
 
 namespace pmpm {
 
@@ -12,10 +12,19 @@ PetscErrorCode LinearElastic::Create(MPI_Comm, const std::string &, const Elasti
   PetscFunctionReturn(0);
 }
 
-bool LinearElastic::tangent(TangentModel &tm) const {
-  tm.kind = TangentKind::LinearElastic;
-  tm.el = c_;
-  return true;
+// The Jaumann update is linear in Gm: ds = dW s - s dW + lambda tr(dGm) I + 2 mu sym(dGm), with s
+// the committed stress.
+void LinearElastic::piola_tangent(const TangentPoint &pt, double *A) const {
+  const TangentKinematics k(pt);
+  const double lam = c_.lambda(), mu = c_.G();
+  piola_directions(
+      [&](const MatN &dG) {
+        const MatN dGm = k.Hi * dG * k.Hi;
+        const MatN dW = 0.5 * (dGm - dGm.transpose()), de = 0.5 * (dGm + dGm.transpose());
+        const MatN ds = dW * k.so - k.so * dW + lam * dGm.trace() * k.I + 2.0 * mu * de;
+        return k.rate_form_dP(dG, ds);
+      },
+      A);
 }
 
 PetscErrorCode NeoHookean::Create(MPI_Comm, const std::string &, const ElasticConstants &el,
@@ -25,10 +34,21 @@ PetscErrorCode NeoHookean::Create(MPI_Comm, const std::string &, const ElasticCo
   PetscFunctionReturn(0);
 }
 
-bool NeoHookean::tangent(TangentModel &tm) const {
-  tm.kind = TangentKind::NeoHookean;
-  tm.el = c_;
-  return true;
+// P = tau f^-T / J^n: dP = (dtau - tau f^-T dG^T) f^-T / J^n, dtau = mu (dF F^T + F dF^T) +
+// lambda tr(f^-1 dG) I, dF = dG F^n.
+void NeoHookean::piola_tangent(const TangentPoint &pt, double *A) const {
+  const TangentKinematics k(pt);
+  const double lam = c_.lambda(), mu = c_.G();
+  const MatN Fo = mat_of(pt.Fn), Ft = k.f * Fo;
+  const double Jn = Fo.determinant();
+  const MatN tau = mu * (Ft * Ft.transpose() - k.I) + lam * std::log(Ft.determinant()) * k.I;
+  piola_directions(
+      [&](const MatN &dG) {
+        const MatN dF = dG * Fo;
+        const MatN dtau = mu * (dF * Ft.transpose() + Ft * dF.transpose()) + lam * k.dtr(dG) * k.I;
+        return MatN((dtau - tau * k.fiT * dG.transpose()) * k.fiT / Jn);
+      },
+      A);
 }
 
 } // namespace pmpm

@@ -1,7 +1,7 @@
-// von Mises: its options, their checks, and what its Newton tangent needs.
+// von Mises: its options, their checks, and its Newton tangent.
 #include "pmpm/materials/von_mises.hpp"
-#include "pmpm/implicit_kernels.hpp"
 #include "pmpm/materials/registry.hpp"
+#include "pmpm/materials/tangent.hpp"
 #include "pmpm/options.hpp"
 
 namespace pmpm {
@@ -32,11 +32,11 @@ PetscErrorCode VonMises::Create(MPI_Comm comm, const std::string &prefix,
   PetscFunctionReturn(0);
 }
 
-bool VonMises::tangent(TangentModel &tm) const {
-  tm.kind = TangentKind::VonMises;
-  tm.vm = prm_;
-  tm.el = prm_.el;
-  return true;
+void VonMises::piola_tangent(const TangentPoint &pt, double *A) const {
+  const TangentKinematics k(pt);
+  const ReturnDerivative D =
+      von_mises_return_derivative(prm_, trial_stress(prm_.el, k, pt), pt.eps_p);
+  plastic_piola_tangent(prm_.el, k, pt, D, A);
 }
 
 } // namespace pmpm

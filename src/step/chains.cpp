@@ -16,12 +16,11 @@ bool Active(const Simulation &sim, const Load &) {
 //     their geometry (normals, length) into their slots.
 PetscErrorCode ParticlesToGrid(StepState &S) {
   Grid &g = S.sim.grid;
-  GridView G;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.chain);
-  PetscCall(GridGetLocal(g, false, G));
-  for (const Chain &c : S.sim.chains) p2g_chain(c, S.load, G, g);
-  PetscCall(GridRestoreLocal(g, G));
+  PetscCall(GridWithLocal(g, false, [&](const GridView &G) {
+    for (const Chain &c : S.sim.chains) p2g_chain(c, S.load, G, g);
+  }));
   PetscFunctionReturn(0);
 }
 
@@ -31,7 +30,6 @@ PetscErrorCode ParticlesToGrid(StepState &S) {
 PetscErrorCode Contact(StepState &S) {
   Simulation &sim = S.sim;
   Grid &g = sim.grid;
-  GridView L;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.contact);
   ContactParams cp = sim.contact;
@@ -39,10 +37,12 @@ PetscErrorCode Contact(StepState &S) {
   contact_bodies(S.G, sim.chains, cp, true, S.rep.contact);
   PetscCall(GridRestoreGlobal(g, S.G));
   PetscCall(GridGlobalToLocal(g));
-  PetscCall(GridGetLocal(g, false, L));
-  PetscCall(GridGetGlobal(g, S.G));
-  chain_friction_capacity(L, S.G, sim.chains);
-  PetscCall(GridRestoreLocal(g, L));
+  PetscCall(GridWithLocal(g, false, [&](const GridView &L) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(GridGetGlobal(g, S.G)); // the step's global view, again for the contact below
+    chain_friction_capacity(L, S.G, sim.chains);
+    PetscFunctionReturn(0);
+  }));
   contact_bodies(S.G, sim.chains, cp, false, S.rep.contact);
   PetscFunctionReturn(0);
 }
@@ -51,20 +51,19 @@ PetscErrorCode Contact(StepState &S) {
 PetscErrorCode GridToPoints(StepState &S) {
   Simulation &sim = S.sim;
   Grid &g = sim.grid;
-  GridView G;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.chain);
-  PetscCall(GridGetLocal(g, false, G));
-  std::vector<double> &buf = sim.chain_buf, part;
+  std::vector<double> &buf = sim.scratch.chain_buf, part;
   buf.clear();
   G2PParams pc = S.pp; // the points' own PIC fraction (-chain_pic)
   pc.pic = sim.set.chain_pic;
-  for (Chain &c : sim.chains) {
-    g2p_chain(c, G, g, pc);
-    chain_pack(c, part);
-    buf.insert(buf.end(), part.begin(), part.end());
-  }
-  PetscCall(GridRestoreLocal(g, G));
+  PetscCall(GridWithLocal(g, false, [&](const GridView &G) {
+    for (Chain &c : sim.chains) {
+      g2p_chain(c, G, g, pc);
+      chain_pack(c, part);
+      buf.insert(buf.end(), part.begin(), part.end());
+    }
+  }));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE,
                              MPI_SUM, sim.comm));
   size_t off = 0;

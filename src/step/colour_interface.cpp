@@ -24,23 +24,21 @@ template <class Shape> void BodyToGrid(StepState &S, const GridView &G) {
 
 // 1b. Body 1's own mass, momentum, force, and its colour gradient (the normals).
 PetscErrorCode ParticlesToGrid(StepState &S) {
-  Grid &gb = S.sim.iface_grid.body;
-  GridView G;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.iface);
-  PetscCall(GridGetLocal(gb, true, G));
-  switch (S.sim.set.shape) {
-  case ShapeKind::Linear:
-    BodyToGrid<LinearShape>(S, G);
-    break;
-  case ShapeKind::UGIMP:
-    BodyToGrid<UGIMPShape>(S, G);
-    break;
-  case ShapeKind::CPGIMP:
-    BodyToGrid<CPGIMPShape>(S, G);
-    break;
-  }
-  PetscCall(GridRestoreLocal(gb, G));
+  PetscCall(GridWithLocal(S.sim.iface_grid.body, true, [&](const GridView &G) {
+    switch (S.sim.set.shape) {
+    case ShapeKind::Linear:
+      BodyToGrid<LinearShape>(S, G);
+      break;
+    case ShapeKind::UGIMP:
+      BodyToGrid<UGIMPShape>(S, G);
+      break;
+    case ShapeKind::CPGIMP:
+      BodyToGrid<CPGIMPShape>(S, G);
+      break;
+    }
+  }));
   PetscFunctionReturn(0);
 }
 
@@ -54,31 +52,25 @@ PetscErrorCode GhostAdd(StepState &S) {
 //     neighbouring cells' sums, one more ghost exchange of the body grid.
 PetscErrorCode CellNormals(StepState &S) {
   Grid &gb = S.sim.iface_grid.body;
-  GridView C, B;
   PetscFunctionBeginUser;
   if (S.sim.iface.normals != InterfaceNormals::Cells) PetscFunctionReturn(0);
   PmpmLogEventScope(step_events.iface);
   PetscCall(GridGlobalToLocal(gb));
-  PetscCall(GridGetLocal(gb, false, C));
-  PetscCall(GridGetGlobal(gb, B));
-  cell_colour_normals(C, B);
-  PetscCall(GridRestoreGlobal(gb, B));
-  PetscCall(GridRestoreLocal(gb, C));
+  PetscCall(GridWithLocal(gb, false, [&](const GridView &C) {
+    return GridWithGlobal(gb, [&](const GridView &B) { cell_colour_normals(C, B); });
+  }));
   PetscFunctionReturn(0);
 }
 
 // 3b. Friction-limited velocities of body 1 and body 2 where they meet.
 PetscErrorCode Update(StepState &S) {
-  Grid &gb = S.sim.iface_grid.body;
-  GridView B;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.iface);
   InterfaceParams ip = S.sim.iface;
   ip.dt = S.dt;
   ip.damping_alpha = S.gp.damping_alpha;
-  PetscCall(GridGetGlobal(gb, B));
-  interface_update(S.G, B, ip, S.rep.iface);
-  PetscCall(GridRestoreGlobal(gb, B));
+  PetscCall(GridWithGlobal(S.sim.iface_grid.body,
+                           [&](const GridView &B) { interface_update(S.G, B, ip, S.rep.iface); }));
   PetscFunctionReturn(0);
 }
 

@@ -15,8 +15,8 @@ bool Active(const Simulation &, const Load &load) {
 PetscErrorCode Increment(StepState &S) {
   Simulation &sim = S.sim;
   PetscFunctionBeginUser;
-  S.rep.eigen_power = shrinkage_increment(S.P, sim.shrink, S.load.shrink, sim.eigen);
-  S.eigen = sim.eigen.data();
+  S.rep.eigen_power = shrinkage_increment(S.P, sim.shrink, S.load.shrink, sim.scratch.eigen);
+  S.eigen = sim.scratch.eigen.data();
   PetscFunctionReturn(0);
 }
 } // namespace

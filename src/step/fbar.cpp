@@ -19,10 +19,10 @@ PetscErrorCode Groups(StepState &S) {
   const Grid &g = sim.grid;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.fbar);
-  fbar_groups(S.P, g.origin, g.h, g.cell_lo, g.cell_hi, g.nbody, sim.fbar_group);
+  fbar_groups(S.P, g.origin, g.h, g.cell_lo, g.cell_hi, g.nbody, sim.scratch.fbar_group);
   if (sim.set.fbar_pressure == FbarPressure::Cell) {
-    fbar_pressure_shift(S.P, sim.fbar_group, sim.fbar_sums, sim.fbar_shift);
-    S.pshift = sim.fbar_shift.data();
+    fbar_pressure_shift(S.P, sim.scratch.fbar_group, sim.scratch.fbar_sums, sim.scratch.fbar_shift);
+    S.pshift = sim.scratch.fbar_shift.data();
   }
   PetscFunctionReturn(0);
 }
@@ -32,7 +32,7 @@ PetscErrorCode Apply(StepState &S) {
   Simulation &sim = S.sim;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.fbar);
-  fbar_apply(S.P, sim.fbar_group, sim.fbar_sums, sim.dudx.data());
+  fbar_apply(S.P, sim.scratch.fbar_group, sim.scratch.fbar_sums, sim.scratch.dudx.data());
   PetscFunctionReturn(0);
 }
 } // namespace

@@ -37,7 +37,8 @@ public:
   const char *model() const override { return kName; }
   bool rate_form() const override { return kRateForm; }
   bool plastic() const override { return kPlastic; }
-  bool tangent(TangentModel &tm) const override;
+  bool has_tangent() const override { return true; }
+  void piola_tangent(const TangentPoint &pt, double *A) const override;
   double wave_modulus() const override { return c_.M(); }
   bool linear_elastic_rate(double &lam, double &G2) const override {
     lam = c_.lambda();
@@ -93,7 +94,8 @@ public:
                                const Options &o, std::unique_ptr<Material> &model);
   explicit NeoHookean(const ElasticConstants &c) : c_(c) {}
   const char *model() const override { return kName; }
-  bool tangent(TangentModel &tm) const override;
+  bool has_tangent() const override { return true; }
+  void piola_tangent(const TangentPoint &pt, double *A) const override;
   double wave_modulus() const override { return c_.M(); }
   bool rate_form() const override { return kRateForm; }
   bool plastic() const override { return kPlastic; }

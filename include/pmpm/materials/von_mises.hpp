@@ -50,23 +50,9 @@ inline ReturnResult von_mises_return(const VonMisesParams &prm, Mat3 &sigma, dou
 // A trial stress on the yield surface (Phi_tr within kOnSurface of sigma_y: a particle that
 // yielded in the last load step, at the next one's start) takes the loading side's derivative,
 // dgamma = 0 (the return is not differentiable there; this is the continuum tangent).
-inline ReturnDerivative von_mises_return_derivative(const VonMisesParams &prm, const Mat3 &sigma_tr,
-                                                    double eps_p) {
-  ReturnDerivative D;
-  Mat3 s = sigma_tr;
-  const ReturnResult r = von_mises_return(prm, s, eps_p);
-  const double G = prm.el.G();
-  const Mat3 s_tr = stress_inv::deviator(sigma_tr);
-  const double norm = s_tr.norm(), q_tr = std::sqrt(1.5) * norm;
-  if (!r.yielded) { // elastic, unless on the yield surface to round-off (see kOnSurface)
-    const double sy = prm.sigma_y0 + prm.hardening * eps_p;
-    if (!(q_tr > 0.0 && q_tr - sy >= -kOnSurface * sy)) return D;
-  }
-  D.n = s_tr / norm;
-  D.a = 1.0 - 3.0 * G * r.dgamma / q_tr;
-  D.b = -3.0 * G * (1.0 / (3.0 * G + prm.hardening) - r.dgamma / q_tr);
-  return D;
-}
+// (src/materials/von_mises_derivative.cpp)
+ReturnDerivative von_mises_return_derivative(const VonMisesParams &prm, const Mat3 &sigma_tr,
+                                             double eps_p);
 
 // Hypoelastic-plastic von Mises material: Jaumann-rotate the old stress, add the elastic
 // increment C:de (trial), then return (same as LinearElastic plus the return map).
@@ -81,7 +67,8 @@ public:
                                const Options &o, std::unique_ptr<Material> &model);
   explicit VonMises(const VonMisesParams &prm) : prm_(prm) {}
   const char *model() const override { return kName; }
-  bool tangent(TangentModel &tm) const override;
+  bool has_tangent() const override { return true; }
+  void piola_tangent(const TangentPoint &pt, double *A) const override;
   double wave_modulus() const override { return prm_.el.M(); }
   bool rate_form() const override { return kRateForm; }
   bool plastic() const override { return kPlastic; }
