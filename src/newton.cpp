@@ -750,6 +750,15 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   PetscCall(SNESGetLinearSolveIterations(ns.snes, &lits));
   ns.newton_its += its;
   ns.linear_its += lits;
+  if (*reason == SNES_DIVERGED_LINEAR_SOLVE) {
+    // a failed factorisation (MUMPS: a zero pivot) leaves the factor's error state behind, and
+    // MUMPS then skips every later factorisation: start the next solve from a fresh one
+    KSP ksp;
+    PC pc;
+    PetscCall(SNESGetKSP(ns.snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCReset(pc));
+  }
   if (*reason <= 0) PetscFunctionReturn(0);
   PetscCall(IncrementInCells(ns, &ns.frac));
   if (limit && ns.cell_fraction > 0 && ns.frac > ns.cell_fraction) {
@@ -847,8 +856,8 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver &ns) {
     PetscCheck(ch == StageChange::Shrink || ch == StageChange::Void ||
                    (motion && motion->moves_supports(k)),
                sim.comm, PETSC_ERR_SUP,
-               "-solver newton runs stage 0, shrinkage, void and moving-support stages only: "
-               "stage %d of scene %s changes %s%s",
+               "-solver newton runs stage 0, shrinkage and void stages only (and a scene's "
+               "moving supports): stage %d of scene %s changes %s%s",
                (int)k, sim.set.scene.c_str(), StageChangeNames[(int)ch], fix);
   }
   // a prescribed support under a membrane chain: the chains' projected columns do not take it
