@@ -3,17 +3,17 @@ displacement imposed in load steps, the door's pressure from the residual's pres
 
 usage: test_trapdoor_newton.py EXE NP OUTDIR
 test_trapdoor.py's coarse case under Newton: H/B = 1 (B = H = 1 m), half model 2 m wide,
-h = B/8, phi 30 deg, psi 0, c = 0, no F-bar, the door lowered to 0.2, 0.5, 1, 2 and 3 % of B in
+h = B/8, phi 30 deg, psi 0, c = 0, no F-bar, the door lowered to 0.2, 0.5 and 1 % of B in
 -newton_load_steps 10 load steps a stage (then equilibrium steps to -tol 1e-4). Terzaghi
 (docs/method.md, section 6.4, c = q = 0) over gamma H: K = 1 gives 0.5931, K = Ka = 1/3 0.8300.
 
-Measured (1 rank): p / gamma H = 1.00000, 0.5749, 0.5304, 0.5242 (the minimum, at 1 % B), 0.5288,
-0.5381; with 20 load steps a stage (every step halved) 0.99999, 0.5739, 0.5298, 0.5241, 0.5289,
-0.5381 (largest difference 1.05e-3 gamma H, at 0.2 % B; 5 steps against 10: 2.0e-3, so the
-difference halves with the step: first order in it); 2 ranks equal to 1 to the 9 digits
-trapdoor.csv prints. Relaxation at this mesh and 1e-5 cells per step (test_trapdoor.py): 1, 0.579,
-0.544, 0.534, 0.538, 0.546: the same shape, 0.01 gamma H above, as a slower door lowers it
-(docs/benchmarks/trapdoor.md).
+Measured (1 rank): p / gamma H = 1.00000, 0.5749, 0.5304, 0.5242 (the minimum, at 1 % B; on to
+2 and 3 % B: 0.5288, 0.5381, the arch holding); with 20 load steps a stage (every step halved)
+0.99999, 0.5739, 0.5298, 0.5241 (largest difference 1.05e-3 gamma H, at 0.2 % B; 5 steps against
+10: 2.0e-3, so the difference halves with the step: first order in it); 2 ranks equal to 1 to
+the 9 digits trapdoor.csv prints. Relaxation at this mesh and 1e-5 cells per step
+(test_trapdoor.py): 1, 0.579, 0.544, 0.534 (and 0.538, 0.546 at 2 and 3 % B): the same shape,
+0.01 gamma H above, as a slower door lowers it (docs/benchmarks/trapdoor.md).
 
 Asserted:
   - every stage reaches equilibrium;
@@ -46,7 +46,7 @@ exe, np_, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 c = Checks(f"trapdoor_newton_np{np_}")
 B, H, phi = 1.0, 1.0, 30.0
 ARGS = ["-options_file", "options/trapdoor.opts", "-cell_size", "0.125", "-trapdoor_height",
-        str(H), "-trapdoor_soil_width", "2", "-trapdoor_displacements", "0.002,0.005,0.01,0.02,0.03",
+        str(H), "-trapdoor_soil_width", "2", "-trapdoor_displacements", "0.002,0.005,0.01",
         "-solver", "newton", "-newton_load_steps", "10"]
 
 
@@ -64,7 +64,7 @@ for s in st:
 ka = (1 - math.sin(math.radians(phi))) / (1 + math.sin(math.radians(phi)))
 k1 = cf.terzaghi_arching(1.0, B, H, 1.0, phi) / H
 print(f"  Terzaghi over gamma H: K = 1 {k1:.4f}, K = Ka {cf.terzaghi_arching(1.0, B, H, ka, phi):.4f}")
-c.check("every stage reaches equilibrium", len(st) == 6 and all(s["converged"] for s in st))
+c.check("every stage reaches equilibrium", len(st) == 4 and all(s["converged"] for s in st))
 c.le("stage 0: p / gamma H - 1 (door held)", abs(st[0]["ratio"] - 1), 1e-4)
 c.ge("minimum above 0.85 Terzaghi(K = 1)", r["min_ratio"], 0.85 * k1)
 c.le("minimum below Terzaghi(K = 1)", r["min_ratio"], k1)
