@@ -56,7 +56,10 @@ def git_rev():
 
 def run(name, hb, h, steps, disp, reuse=False):
     d = OUT / name
-    if not (reuse and (d / "summary.json").is_file()):
+    if reuse and not (d / "summary.json").is_file():
+        print(f"  {name}: not run (--reuse)")
+        return None
+    if not reuse:
         if d.is_dir():
             shutil.rmtree(d)
         cmd = ["mpiexec", "-n", "1", str(OUT / "bin" / "pmpm"), "-options_file",
@@ -124,7 +127,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--reuse", action="store_true",
-                    help="read the runs already in bench/out/trapdoor_newton")
+                    help="read the runs already in bench/out/trapdoor_newton (skip the others)")
     ap.add_argument("--fine", action="store_true", help="also H/B = 1 at h = B/32")
     a = ap.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
@@ -137,7 +140,7 @@ def main():
     if a.fine:
         jobs += [("hb1_h32_n10", 1, B / 32, 10, SHORT), ("hb1_h32_n20", 1, B / 32, 20, SHORT)]
     with ThreadPoolExecutor(max_workers=2) as ex:
-        res = list(ex.map(lambda j: run(*j, reuse=a.reuse), jobs))
+        res = [r for r in ex.map(lambda j: run(*j, reuse=a.reuse), jobs) if r]
     plot(res, ROOT / "bench" / "trapdoor_newton.png")
     ka = (1 - math.sin(math.radians(PHI))) / (1 + math.sin(math.radians(PHI)))
     md = [MARK_BEGIN, "## The trapdoor under Newton: the curve without a rate "

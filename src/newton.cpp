@@ -21,7 +21,11 @@
 //  - Membrane chains bonded on both faces are more internal force on the same du
 //    (chain_implicit.hpp); the stencil is then one node wider. Stages run on a LoadPath (stage 0
 //    ramps the loads, a shrinkage stage its eigenstrain at full load, a void stage releases the
-//    removed particles' forces at full load; Scene::stage_change).
+//    removed particles' forces at full load; Scene::stage_change; a moving-support stage imposes
+//    the supports' displacement at full load, SupportMotion in solver.hpp).
+//  - Prescribed supports (Simulation::prescribed) are Dirichlet dofs: identity rows and columns
+//    like held dofs, R = kref (du - ubar), but their du enters the kinematics (kinL). The force
+//    on them is the residual's rows before that replacement (SupportReaction).
 //  - A load step whose solve fails is halved (-newton_max_cuts in a row); one failing at the last
 //    halving ends the stage not converged (relaxation's capped stage: a collapse), never an
 //    answer.

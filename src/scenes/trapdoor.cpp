@@ -20,8 +20,9 @@
 //
 // The soil follows the door on the grid: the door is a region of nodes at the door's velocity, not
 // a surface, so its top is resolved to a cell. For displacements below a cell (the minimum of the
-// curve) that is the base itself. The curve depends on the door's rate as well as on the cell:
-// a faster door drops soil onto itself and reads more pressure (docs/trapdoor.md).
+// curve) that is the base itself. Under relaxation the curve depends on the door's rate as well as
+// on the cell: a faster door drops soil onto itself and reads more pressure (docs/trapdoor.md);
+// Newton's has no rate.
 #include "pmpm/options.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
