@@ -59,10 +59,10 @@ def git_rev():
 
 def run(name, hb, h, steps, disp, reuse=False):
     d = OUT / name
-    if reuse == "only" and not (d / "summary.json").is_file():
+    if reuse == "only" and not (d / "trapdoor.csv").is_file():
         print(f"  {name}: not run (--no-run)")
         return None
-    if not (reuse and (d / "summary.json").is_file()):
+    if not (reuse and (d / "summary.json").is_file()) and reuse != "only":
         if d.is_dir():
             shutil.rmtree(d)
         cmd = ["mpiexec", "-n", "1", str(OUT / "bin" / "pmpm"), "-options_file",
@@ -70,23 +70,28 @@ def run(name, hb, h, steps, disp, reuse=False):
                "-trapdoor_soil_width", str(2.5 * B), "-trapdoor_displacements", disp,
                "-solver", "newton", "-newton_load_steps", str(steps), "-output_dir", str(d),
                "-max_steps", "400000"]
-        p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE,
-                           stderr=subprocess.STDOUT, text=True)
-        (d / "log.txt").write_text(p.stdout)
+        with open(d.parent / f"{name}.log", "w") as log:  # a file: the run outlives this script
+            p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=log, stderr=subprocess.STDOUT)
         if p.returncode not in (0, 3):  # 3: a stage ended NOT converged, its answers written
-            print(p.stdout[-1500:])
-            sys.exit(f"pmpm failed: {name}")
-    with open(d / "summary.json") as f:
-        s = json.load(f)
+            sys.exit(f"pmpm failed: {name} (see {d.parent / (name + '.log')})")
+    # the curve from trapdoor.csv (written after every stage: a run stopped early gives its
+    # stages so far); wall time and Newton's counts from summary.json when the run finished
     with open(d / "trapdoor.csv") as f:
         rows = list(csv.DictReader(f))
-    r = s["results"]
+    s = {}
+    if (d / "summary.json").is_file():
+        with open(d / "summary.json") as f:
+            s = json.load(f)
+    dd = [float(x["displacement_over_B"]) for x in rows]
+    pp = [float(x["pressure_over_gammaH"]) for x in rows]
+    k = min(range(1, len(pp)), key=lambda i: pp[i])
+    r = dict(min_ratio=pp[k], min_displacement_over_B=dd[k], final_ratio=pp[-1],
+             final_displacement_over_B=dd[-1])
     print(f"  {name}: min {r['min_ratio']:.4f} at {100 * r['min_displacement_over_B']:.2f} % B, "
-          f"final {r['final_ratio']:.4f}, {s.get('wall_seconds', 0):.1f} s", flush=True)
-    return dict(name=name, hb=hb, h=h, steps=steps, res=r, dir=d, wall=s.get("wall_seconds", 0),
-                newton=s.get("newton", {}),
-                d=[float(x["displacement_over_B"]) for x in rows],
-                p=[float(x["pressure_over_gammaH"]) for x in rows],
+          f"final {r['final_ratio']:.4f}, {s.get('wall_seconds', float('nan')):.1f} s",
+          flush=True)
+    return dict(name=name, hb=hb, h=h, steps=steps, res=r, dir=d, finished=bool(s),
+                wall=s.get("wall_seconds", float("nan")), newton=s.get("newton", {}), d=dd, p=pp,
                 conv=[int(x["converged"]) for x in rows])
 
 
@@ -106,8 +111,12 @@ def plot(res, path):
                 continue
             style = "-" if r["steps"] == 10 else "--"
             col = "k" if round(B / r["h"]) == 16 else "C3"
-            ax.plot([100 * x for x in r["d"]], r["p"], style, color=col, marker="o", ms=3,
+            ok = [(100 * x, y) for x, y, c in zip(r["d"], r["p"], r["conv"]) if c]
+            ax.plot([x for x, _ in ok], [y for _, y in ok], style, color=col, marker="o", ms=3,
                     label=f"Newton, h = B/{round(B / r['h'])}, {r['steps']} load steps a stage")
+            bad = [(100 * x, y) for x, y, c in zip(r["d"], r["p"], r["conv"]) if not c]
+            if bad:  # a stage whose load steps stalled: where its last converged step left it
+                ax.plot([x for x, _ in bad], [y for _, y in bad], "x", color=col, ms=7)
         for k, (rate, pts) in enumerate(sorted(RELAX.get(hb, {}).items(), reverse=True)):
             ax.plot([0] + [100 * x for x, _ in pts], [1.0] + [y for _, y in pts], ":",
                     marker="s", ms=4, color=f"C{k}",
@@ -183,8 +192,9 @@ def main():
                   f"{diff:.1e} | {terz(r['hb'], 1):.3f} | {terz(r['hb'], ka):.3f} | "
                   f"{rels or '-'} | {sum(1 - c for c in r['conv']) or ''} | "
                   f"{nw.get('load_steps', '?')} / {nw.get('nonlinear_iterations', '?')} | "
-                  f"{r['wall']:.1f} |")
-    md += ["", "Newton's curves (solid N = 10, dashed N = 20) beside relaxation's rate series "
+                  f"{r['wall']:.1f}{'' if r['finished'] else ' (stopped early)'} |")
+    md += ["", "Newton's curves (solid N = 10, dashed N = 20; x: a stage not converged, at the door "
+           "displacement its last converged load step reached) beside relaxation's rate series "
            "(dotted: the points docs/benchmarks/trapdoor.md's table gives, joined; not rerun); "
            "grey: Terzaghi K = 1 (dashed) and K = Ka (dotted):", "",
            "![trapdoor under Newton](bench/trapdoor_newton.png)", "", MARK_END]
