@@ -185,14 +185,15 @@ def main():
         rel = RELAX_MIN.get(r["hb"], {}) if round(B / r["h"]) == 16 else {}
         rels = ", ".join(f"{v:.3f} ({k:g})" for k, v in sorted(rel.items(), reverse=True))
         nw = r["newton"]
+        wall = f"{r['wall']:.0f}" if r["finished"] else "- (stopped early)"
         md.append(f"| {r['hb']} | 1/{round(B / r['h'])} | {r['steps']} | "
                   f"{at.get(0.001, float('nan')):.3f} | {at.get(0.002, float('nan')):.3f} | "
                   f"{rr['min_ratio']:.3f} | {100 * rr['min_displacement_over_B']:.1f} | "
                   f"{rr['final_ratio']:.3f} ({100 * rr['final_displacement_over_B']:.1f}) | "
                   f"{diff:.1e} | {terz(r['hb'], 1):.3f} | {terz(r['hb'], ka):.3f} | "
                   f"{rels or '-'} | {sum(1 - c for c in r['conv']) or ''} | "
-                  f"{nw.get('load_steps', '?')} / {nw.get('nonlinear_iterations', '?')} | "
-                  f"{r['wall']:.1f}{'' if r['finished'] else ' (stopped early)'} |")
+                  f"{nw.get('load_steps', '-')} / {nw.get('nonlinear_iterations', '-')} | "
+                  f"{wall} |")
     md += ["", "Newton's curves (solid N = 10, dashed N = 20; x: a stage not converged, at the door "
            "displacement its last converged load step reached) beside relaxation's rate series "
            "(dotted: the points docs/benchmarks/trapdoor.md's table gives, joined; not rerun); "
