@@ -84,9 +84,10 @@ def run(name, hb, h, steps, disp, reuse=False):
             s = json.load(f)
     dd = [float(x["displacement_over_B"]) for x in rows]
     pp = [float(x["pressure_over_gammaH"]) for x in rows]
-    k = min(range(1, len(pp)), key=lambda i: pp[i])
-    r = dict(min_ratio=pp[k], min_displacement_over_B=dd[k], final_ratio=pp[-1],
-             final_displacement_over_B=dd[-1])
+    ok = [i for i in range(1, len(pp)) if int(rows[i]["converged"])]  # stages in equilibrium
+    k = min(ok, key=lambda i: pp[i])
+    r = dict(min_ratio=pp[k], min_displacement_over_B=dd[k], final_ratio=pp[ok[-1]],
+             final_displacement_over_B=dd[ok[-1]])
     print(f"  {name}: min {r['min_ratio']:.4f} at {100 * r['min_displacement_over_B']:.2f} % B, "
           f"final {r['final_ratio']:.4f}, {s.get('wall_seconds', float('nan')):.1f} s",
           flush=True)
