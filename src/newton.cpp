@@ -21,7 +21,11 @@
 //  - Membrane chains bonded on both faces are more internal force on the same du
 //    (chain_implicit.hpp); the stencil is then one node wider. Stages run on a LoadPath (stage 0
 //    ramps the loads, a shrinkage stage its eigenstrain at full load, a void stage releases the
-//    removed particles' forces at full load; Scene::stage_change).
+//    removed particles' forces at full load; Scene::stage_change; a moving-support stage imposes
+//    the supports' displacement at full load, SupportMotion in solver.hpp).
+//  - Prescribed supports (Simulation::prescribed) are Dirichlet dofs: identity rows and columns
+//    like held dofs, R = kref (du - ubar), but their du enters the kinematics (kinL). The force
+//    on them is the residual's rows before that replacement (SupportReaction).
 //  - A load step whose solve fails is halved (-newton_max_cuts in a row); one failing at the last
 //    halving ends the stage not converged (relaxation's capped stage: a collapse), never an
 //    answer.
@@ -35,6 +39,7 @@
 #include "pmpm/implicit_kernels.hpp"
 #include "pmpm/stress_update.hpp"
 #include <petscsnes.h>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -72,6 +77,14 @@ struct NewtonSolver final : EquilibriumSolver {
   Vec R0 = nullptr;   // a void stage's residual at its start (the removed particles' forces)
   double release = 0; // the share of R0 still held by the load path (1 - t: LoadPath)
   Vec Uloc = nullptr, Rloc = nullptr, maskL = nullptr;
+  // Moving supports (Simulation::prescribed, SupportMotion): Dirichlet dofs whose increment ubar
+  // is imposed. kinL: the dofs whose du enters the kinematics, the free ones and these (maskL
+  // with no supports); pdof: per owned dof its entry of Simulation::prescribed or -1.
+  Vec kinL = nullptr;
+  std::vector<PetscInt> pdof;
+  std::vector<double> ubar;       // per owned dof: the load step's prescribed increment (m)
+  std::vector<double> support_du; // per prescribed entry: the stage's displacement (m)
+  double reaction[DIM] = {0, 0};  // the last residual's weighted support force (this rank)
   PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0}, s[DIM] = {0, 0}, m[DIM] = {0, 0};
   PetscInt load_steps = 10, max_cuts = 6, max_equilibrium = 30;
   double cell_fraction = 0; // -newton_cell_fraction: largest |du| / h of a load step (0: off)
@@ -158,7 +171,7 @@ template <class Shape> PetscErrorCode TrialState(NewtonSolver &ns, Vec U, const 
   ns.epsp.assign(P.eps_p, P.eps_p + n);
   PetscCall(DMGlobalToLocal(ns.da, U, INSERT_VALUES, ns.Uloc));
   PetscCall(VecGetArrayRead(ns.Uloc, &u));
-  PetscCall(VecGetArrayRead(ns.maskL, &mk));
+  PetscCall(VecGetArrayRead(ns.kinL, &mk));
   if (ns.reset) ns.up.resize(n * DIM); // the equilibrium step's trial positions need u_p
   implicit_gradient<Shape>(P, LocalView(ns, const_cast<double *>(u)),
                            LocalView(ns, const_cast<double *>(mk)), ns.G.data(),
@@ -169,7 +182,7 @@ template <class Shape> PetscErrorCode TrialState(NewtonSolver &ns, Vec U, const 
                           LocalView(ns, const_cast<double *>(mk)), ns.cdu.data() + off);
     off += S.mapped.size() * DIM;
   }
-  PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
+  PetscCall(VecRestoreArrayRead(ns.kinL, &mk));
   PetscCall(VecRestoreArrayRead(ns.Uloc, &u));
   if (!ns.cst.empty()) {
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, ns.cdu.data(), static_cast<int>(ns.cdu.size()),
@@ -189,7 +202,9 @@ template <class Shape> PetscErrorCode TrialState(NewtonSolver &ns, Vec U, const 
   PetscFunctionReturn(0);
 }
 
-// R = f_int(du) - lambda f_ext on free dofs, kref du on the others.
+// R = f_int(du) - lambda f_ext on free dofs, kref (du - ubar) on the others (ubar: a moving
+// support's increment, else 0). The prescribed dofs' rows before that, -R weighted by their
+// entries' weights, are the force the body puts on the supports (ns.reaction, this rank's).
 template <class Shape> PetscErrorCode Residual(NewtonSolver &ns, Vec U, Vec R) {
   ParticleView P;
   double *r;
@@ -218,8 +233,17 @@ template <class Shape> PetscErrorCode Residual(NewtonSolver &ns, Vec U, Vec R) {
   PetscCall(VecGetArray(R, &r));
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(VecGetArrayRead(ns.maskG, &mk));
-  for (PetscInt q = 0; q < n; ++q)
-    if (mk[q] == 0.0) r[q] = ns.kref * u[q];
+  if (ns.pdof.empty()) {
+    for (PetscInt q = 0; q < n; ++q)
+      if (mk[q] == 0.0) r[q] = ns.kref * u[q];
+  } else {
+    const PrescribedVelocity &pv = ns.sim->prescribed;
+    ns.reaction[0] = ns.reaction[1] = 0.0;
+    for (PetscInt q = 0; q < n; ++q)
+      if (ns.pdof[q] >= 0) ns.reaction[q % DIM] -= pv.weight[ns.pdof[q]] * r[q];
+    for (PetscInt q = 0; q < n; ++q)
+      if (mk[q] == 0.0) r[q] = ns.kref * (u[q] - ns.ubar[q]);
+  }
   PetscCall(VecRestoreArrayRead(ns.maskG, &mk));
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscCall(VecRestoreArray(R, &r));
@@ -238,20 +262,17 @@ PetscErrorCode FormResidual(SNES, Vec U, Vec R, void *ctx) {
   PetscFunctionReturn(0);
 }
 
-// The consistent tangent: each particle's stiffness gathered per node (add_particle_blocks),
-// then one insertion per node row over its free, supported dofs; kref on the diagonal of the
-// others.
-template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
+// Each particle's consistent stiffness at the trial state of U (with the reset grid's term in an
+// equilibrium step), gathered per node pair into NB (add_particle_blocks); then the membrane
+// chains' bar stiffness. NB's storage is ns.blocks.
+template <class Shape> PetscErrorCode ParticleBlocks(NewtonSolver &ns, Vec U, NodeBlocks &NB) {
   constexpr int NN = Weights<Shape>::NN, ND = NN * DIM;
   Simulation &sim = *ns.sim;
   ParticleView P;
   Weights<Shape> W;
   double A[DIM * DIM * DIM * DIM], K[ND * ND], H[NN][3];
   const double gw[DIM] = {ns.lambda * sim.set.gdir[0], ns.lambda * sim.set.gdir[1]};
-  const double *mk;
   PetscFunctionBeginUser;
-  PetscCall(MatZeroEntries(B));
-  NodeBlocks NB;
   NB.w = ns.width;
   const int nb = (2 * NB.w + 1) * (2 * NB.w + 1);
   for (int d = 0; d < DIM; ++d) {
@@ -280,11 +301,24 @@ template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
   int missed = 0;
   for (size_t k = 0; k < ns.cst.size(); ++k)
     missed += chain_stiffness(sim.chains[k], ns.cst[k], ns.ctr[k], NB);
-  // -chain_strain_projection: the material term couples segments sharing a projection node, up to
-  // about 7 nodes apart, beyond the stencil: global indices (the matrix takes new nonzeros)
+  // the stencil width covers a chain whose neighbouring points lie within a cell of each other
+  PetscCheck(missed == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+             "-solver newton: %d couplings of a membrane chain reach beyond the stencil width %d "
+             "(its points more than a cell apart?): raise -newton_load_steps",
+             missed, (int)ns.width);
+  PetscFunctionReturn(0);
+}
+
+// -chain_strain_projection: the material term couples segments sharing a projection node, up to
+// about 7 nodes apart, beyond the stencil: added with global indices (the matrix takes new
+// nonzeros), rows over the free dofs.
+PetscErrorCode ProjectedChainCoupling(NewtonSolver &ns, Mat B) {
+  Simulation &sim = *ns.sim;
   std::vector<ChainDofValue> pa, pb;
   std::vector<PetscInt> gr, gc;
   std::vector<double> gv;
+  const double *mk;
+  PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(ns.maskL, &mk));
   const NodalView ML = LocalView(ns, const_cast<double *>(mk));
   for (size_t k = 0; k < ns.cst.size(); ++k) {
@@ -310,11 +344,15 @@ template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
     }
   }
   PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
-  // the stencil width covers a chain whose neighbouring points lie within a cell of each other
-  PetscCheck(missed == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB,
-             "-solver newton: %d couplings of a membrane chain reach beyond the stencil width %d "
-             "(its points more than a cell apart?): raise -newton_load_steps",
-             missed, (int)ns.width);
+  PetscFunctionReturn(0);
+}
+
+// NB into the matrix: one insertion per node row over its free dofs, the columns its free
+// neighbours' dofs (held and unsupported dofs have neither).
+PetscErrorCode InsertBlocks(NewtonSolver &ns, const NodeBlocks &NB, Mat B) {
+  const int nb = (2 * NB.w + 1) * (2 * NB.w + 1);
+  const double *mk;
+  PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(ns.maskL, &mk));
   const NodalView M = LocalView(ns, const_cast<double *>(mk));
   std::vector<MatStencil> rows(DIM), cols(static_cast<size_t>(nb) * DIM);
@@ -352,6 +390,13 @@ template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
       PetscCall(MatSetValuesStencil(B, nr, rows.data(), nc, cols.data(), vals.data(), ADD_VALUES));
     }
   PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
+  PetscFunctionReturn(0);
+}
+
+// kref on the diagonal of the owned dofs that are not free (held, prescribed, unsupported).
+PetscErrorCode HeldDiagonal(NewtonSolver &ns, Mat B) {
+  const double *mk;
+  PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(ns.maskG, &mk));
   for (PetscInt j = ns.s[1]; j < ns.s[1] + ns.m[1]; ++j)
     for (PetscInt i = ns.s[0]; i < ns.s[0] + ns.m[0]; ++i)
@@ -361,6 +406,20 @@ template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
           PetscCall(MatSetValuesStencil(B, 1, &st, 1, &st, &ns.kref, ADD_VALUES));
         }
   PetscCall(VecRestoreArrayRead(ns.maskG, &mk));
+  PetscFunctionReturn(0);
+}
+
+// The consistent tangent: each particle's stiffness gathered per node, the chains' couplings,
+// then one insertion per node row over its free, supported dofs; kref on the diagonal of the
+// others.
+template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
+  NodeBlocks NB;
+  PetscFunctionBeginUser;
+  PetscCall(MatZeroEntries(B));
+  PetscCall(ParticleBlocks<Shape>(ns, U, NB));
+  PetscCall(ProjectedChainCoupling(ns, B));
+  PetscCall(InsertBlocks(ns, NB, B));
+  PetscCall(HeldDiagonal(ns, B));
   PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
@@ -382,7 +441,33 @@ PetscErrorCode FormJacobian(SNES, Vec U, Mat Jac, Mat B, void *ctx) {
   PetscFunctionReturn(0);
 }
 
-// The unit load (explicit P2G's external force at the current positions) and the dof mask.
+// The entry of Simulation::prescribed that holds dof d of node (i, j), or -1.
+PetscInt PrescribedEntry(const Simulation &sim, PetscInt i, PetscInt j, int d) {
+  const std::vector<PetscInt> &key = sim.prescribed.key;
+  if (key.empty() || i < 0 || j < 0 || i > sim.ncell[0] || j > sim.ncell[1]) return -1;
+  const PetscInt k = PrescribedKey(i, j, d, sim.ncell);
+  const auto it = std::lower_bound(key.begin(), key.end(), k);
+  return it != key.end() && *it == k ? static_cast<PetscInt>(it - key.begin()) : -1;
+}
+
+// The kinematic mask kinL: the free dofs (maskL) and the prescribed ones, whose du is imposed.
+PetscErrorCode KinematicMask(NewtonSolver &ns) {
+  double *k;
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(ns.maskL, ns.kinL));
+  if (ns.sim->prescribed.empty()) PetscFunctionReturn(0);
+  PetscCall(VecGetArray(ns.kinL, &k));
+  for (PetscInt j = ns.gs[1]; j < ns.gs[1] + ns.gm[1]; ++j)
+    for (PetscInt i = ns.gs[0]; i < ns.gs[0] + ns.gm[0]; ++i)
+      for (int a = 0; a < DIM; ++a)
+        if (PrescribedEntry(*ns.sim, i, j, a) >= 0)
+          k[((j - ns.gs[1]) * ns.gm[0] + (i - ns.gs[0])) * DIM + a] = 1.0;
+  PetscCall(VecRestoreArray(ns.kinL, &k));
+  PetscFunctionReturn(0);
+}
+
+// The unit load (explicit P2G's external force at the current positions) and the dof masks: a
+// dof is free when its node has support and neither a box face nor a prescribed support holds it.
 PetscErrorCode Loads(NewtonSolver &ns) {
   Simulation &sim = *ns.sim;
   GridView G;
@@ -420,6 +505,8 @@ PetscErrorCode Loads(NewtonSolver &ns) {
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mmax, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
   PetscCall(VecGetArray(ns.fext, &f));
   PetscCall(VecGetArray(ns.maskG, &mk));
+  const bool moving = !sim.prescribed.empty();
+  ns.pdof.assign(moving ? static_cast<size_t>(ns.m[0] * ns.m[1] * DIM) : 0, -1);
   for (PetscInt j = ns.s[1]; j < ns.s[1] + ns.m[1]; ++j)
     for (PetscInt i = ns.s[0]; i < ns.s[0] + ns.m[0]; ++i) {
       const double *node = G.node(i, j);
@@ -429,7 +516,8 @@ PetscErrorCode Loads(NewtonSolver &ns) {
       const bool supported = body_sum(node, GridDof::M) > ns.small_cut * mmax;
       for (int a = 0; a < DIM; ++a) {
         f[q + a] = body_sum(node, GridDof::FEXT + a);
-        mk[q + a] = supported && !held[a] ? 1.0 : 0.0;
+        if (moving) ns.pdof[q + a] = PrescribedEntry(sim, i, j, a);
+        mk[q + a] = supported && !held[a] && !(moving && ns.pdof[q + a] >= 0) ? 1.0 : 0.0;
       }
     }
   PetscCall(VecRestoreArray(ns.maskG, &mk));
@@ -437,6 +525,7 @@ PetscErrorCode Loads(NewtonSolver &ns) {
   PetscCall(GridRestoreGlobal(sim.grid, G));
   PetscCall(VecSet(ns.maskL, 0.0)); // ghosts beyond the box stay 0: never free
   PetscCall(DMGlobalToLocal(ns.da, ns.maskG, INSERT_VALUES, ns.maskL));
+  PetscCall(KinematicMask(ns));
   PetscFunctionReturn(0);
 }
 
@@ -453,7 +542,7 @@ template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
   PetscCall(ParticlesGetView(sim.parts, P));
   PetscCall(TrialState<Shape>(ns, ns.U, P)); // G and F_new of the converged du; Uloc holds du
   PetscCall(VecGetArrayRead(ns.Uloc, &u));
-  PetscCall(VecGetArrayRead(ns.maskL, &mk));
+  PetscCall(VecGetArrayRead(ns.kinL, &mk));
   const NodalView Uv = LocalView(ns, const_cast<double *>(u)),
                   Mv = LocalView(ns, const_cast<double *>(mk));
   const Grid &g = sim.grid;
@@ -488,7 +577,7 @@ template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
                                 static_cast<PetscInt>((x[1] - g.origin[1]) / g.h)};
     if (!g.owns_cell(cell)) ++left;
   }
-  PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
+  PetscCall(VecRestoreArrayRead(ns.kinL, &mk));
   PetscCall(VecRestoreArrayRead(ns.Uloc, &u));
   // the committed update, in place
   UpdateStresses(sim, ns.Gm.data(), P.F, P.stress, P.eps_p,
@@ -587,13 +676,32 @@ PetscErrorCode IncrementInCells(NewtonSolver &ns, double *frac) {
 // begin_stage) holds the loads at full and releases the removed particles' forces: R0, the
 // residual of the remaining particles at the stage's start (in equilibrium before the removal, so
 // R0 is what the removed ones carried), is held back by the share 1 - t (R(du) - (1 - t) R0 = 0,
-// solved by du = 0 at t = 0), the usual excavation path, which a failed step can halve.
+// solved by du = 0 at t = 0), the usual excavation path, which a failed step can halve. A
+// moving-support stage (SupportMotion: the trapdoor's door) holds the loads at full and imposes
+// the share t of the supports' displacement: each load step's increment (t1 - t0) of it on the
+// prescribed dofs, Dirichlet rows kref (du - ubar) with du = ubar from the start.
 struct LoadPath {
-  bool ramp_loads = true; // f_ext from 0 to full over the stage; else full throughout
-  double shrink = 0;      // the stage's volumetric shrinkage (Simulation::stage_shrink)
-  bool release = false;   // a void stage: R0 released from 1 to 0 over the stage
+  bool ramp_loads = true;            // f_ext from 0 to full over the stage; else full throughout
+  double shrink = 0;                 // the stage's volumetric shrinkage (Simulation::stage_shrink)
+  bool release = false;              // a void stage: R0 released from 1 to 0 over the stage
+  SupportMotion *supports = nullptr; // a moving-support stage: the scene that moves them
   double load(double t) const { return ramp_loads ? t : 1.0; }
 };
+
+// The load step's prescribed increments (ns.ubar: share dt of the stage's support displacement,
+// 0 in equilibrium steps and other stages) and its initial guess: du = ubar on them, 0 elsewhere.
+PetscErrorCode PrescribedIncrement(NewtonSolver &ns, double dt) {
+  double *u;
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(ns.U));
+  ns.ubar.assign(ns.pdof.size(), 0.0);
+  if (ns.support_du.empty() || dt == 0.0) PetscFunctionReturn(0);
+  PetscCall(VecGetArray(ns.U, &u));
+  for (size_t q = 0; q < ns.pdof.size(); ++q)
+    if (ns.pdof[q] >= 0) u[q] = ns.ubar[q] = dt * ns.support_du[ns.pdof[q]];
+  PetscCall(VecRestoreArray(ns.U, &u));
+  PetscFunctionReturn(0);
+}
 
 // One load step from t0 to t1 on the path, from the committed state: SNES solve, then commit.
 // Returns the SNES reason (the state is committed only when it is positive) and, under
@@ -626,7 +734,7 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   const double rtol = equilibrium && !ns.rtol_given ? kEquilibriumRtol : ns.rtol;
   ns.reset = equilibrium; // relaxation's criterion is checked on the reset grid: solve there
   PetscCall(SNESSetTolerances(ns.snes, atol, rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
-  PetscCall(VecZeroEntries(ns.U));
+  PetscCall(PrescribedIncrement(ns, equilibrium || !path.supports ? 0.0 : t1 - t0));
   PetscCall(PetscLogEventBegin(ev_solve, 0, 0, 0, 0));
   PetscCall(SNESSolve(ns.snes, nullptr, ns.U));
   PetscCall(PetscLogEventEnd(ev_solve, 0, 0, 0, 0));
@@ -645,6 +753,15 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   PetscCall(SNESGetLinearSolveIterations(ns.snes, &lits));
   ns.newton_its += its;
   ns.linear_its += lits;
+  if (*reason == SNES_DIVERGED_LINEAR_SOLVE) {
+    // a failed factorisation (MUMPS: a zero pivot) leaves the factor's error state behind, and
+    // MUMPS then skips every later factorisation: start the next solve from a fresh one
+    KSP ksp;
+    PC pc;
+    PetscCall(SNESGetKSP(ns.snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCReset(pc));
+  }
   if (*reason <= 0) PetscFunctionReturn(0);
   PetscCall(IncrementInCells(ns, &ns.frac));
   if (limit && ns.cell_fraction > 0 && ns.frac > ns.cell_fraction) {
@@ -661,6 +778,7 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   ++sim.run.step;
   ++sim.run.stage_step;
   if (!equilibrium) sim.run.time = t1; // pseudo-time: the stage's path parameter
+  if (!equilibrium && path.supports) PetscCall(path.supports->supports_moved(sim, t1));
   if (!sim.set.quiet) {
     double rn;
     PetscCall(SNESGetFunctionNorm(ns.snes, &rn));
@@ -680,6 +798,27 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   PetscFunctionReturn(0);
 }
 
+// The force the body puts on the prescribed supports at the committed state, weighted by their
+// entries (Simulation::support_force, as relaxation's grid update reports it): minus the residual's
+// prescribed rows at full load and du = 0. That is the residual of the last converged step on the
+// reset grid (the commit moved the particles where its trial state put them), whose free rows
+// relaxation's criterion checked.
+PetscErrorCode SupportReaction(NewtonSolver &ns) {
+  Simulation &sim = *ns.sim;
+  PetscFunctionBeginUser;
+  if (sim.prescribed.empty()) PetscFunctionReturn(0);
+  PetscCall(Loads(ns));
+  PetscCall(ChainStencils(ns));
+  ns.lambda = 1.0;
+  ns.release = 0.0;
+  ns.eigen.clear();
+  ns.reset = false;
+  PetscCall(PrescribedIncrement(ns, 0.0));
+  PetscCall(FormResidual(ns.snes, ns.U, ns.R, &ns));
+  PetscCallMPI(MPI_Allreduce(ns.reaction, sim.support_force, DIM, MPI_DOUBLE, MPI_SUM, sim.comm));
+  PetscFunctionReturn(0);
+}
+
 // A void stage's R0 (LoadPath): the residual at full load and du = 0 of the particles that remain.
 PetscErrorCode ReleaseStart(NewtonSolver &ns) {
   PetscFunctionBeginUser;
@@ -689,7 +828,7 @@ PetscErrorCode ReleaseStart(NewtonSolver &ns) {
   ns.release = 0.0;
   ns.eigen.clear();
   ns.reset = false;
-  PetscCall(VecZeroEntries(ns.U));
+  PetscCall(PrescribedIncrement(ns, 0.0));
   PetscCall(FormResidual(ns.snes, ns.U, ns.R0, &ns));
   PetscFunctionReturn(0);
 }
@@ -712,14 +851,21 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver & /*ns*/) {
              PETSC_ERR_SUP,
              "-solver newton does not support frictional interfaces (-interface_type %s) yet%s",
              InterfaceTypeNames[(int)sim.iface.type], fix);
-  // stages: stage 0's loads, shrinkage and void stages have a load path (Newton's LoadPath)
+  // stages: stage 0's loads, shrinkage, void and moving-support stages have a load path
+  // (Newton's LoadPath)
+  const auto *motion = dynamic_cast<const SupportMotion *>(sim.scene.get());
   for (PetscInt k = 1; k <= sim.scene->stages(); ++k) {
     const StageChange ch = sim.scene->stage_change(k);
-    PetscCheck(ch == StageChange::Shrink || ch == StageChange::Void, sim.comm, PETSC_ERR_SUP,
-               "-solver newton runs stage 0, shrinkage and void stages only: stage %d of scene "
-               "%s changes %s%s",
+    PetscCheck(ch == StageChange::Shrink || ch == StageChange::Void ||
+                   (motion && motion->moves_supports(k)),
+               sim.comm, PETSC_ERR_SUP,
+               "-solver newton runs stage 0, shrinkage and void stages only (and a scene's "
+               "moving supports): stage %d of scene %s changes %s%s",
                (int)k, sim.set.scene.c_str(), StageChangeNames[(int)ch], fix);
   }
+  // a prescribed support under a membrane chain: the chains' projected columns do not take it
+  PetscCheck(sim.prescribed.empty() || sim.chains.empty(), sim.comm, PETSC_ERR_SUP,
+             "-solver newton does not support prescribed supports with membrane chains yet%s", fix);
   PetscCheck(!sim.set.dynamic, sim.comm, PETSC_ERR_SUP,
              "-solver newton is quasi-static: -dynamic needs -solver relaxation");
   PetscCheck(!sim.set.fbar, sim.comm, PETSC_ERR_SUP, "-solver newton does not support -fbar yet%s",
@@ -767,52 +913,147 @@ PetscErrorCode BoomerAMGDefaults() {
   PetscFunctionReturn(0);
 }
 
-// Read the -newton_* options, refuse what Newton cannot solve yet (chains in contact, frictional
-// interfaces, staged scenes other than shrinkage, materials without a consistent tangent, ...)
-// with a clear error, and create the SNES on its own DMDA (DIM dofs per node, box stencil as wide
-// as the shape's support) with every -snes_/-ksp_/-pc_ option applied. With -help only lists the
-// options.
-PetscErrorCode NewtonSolver::setup(Simulation &sim) {
-  PetscBool help = PETSC_FALSE, set = PETSC_FALSE;
+namespace {
+// The -newton_* options, each checked against its range.
+PetscErrorCode ReadOptions(NewtonSolver &ns, Simulation &sim) {
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsHasHelp(nullptr, &help));
-  NewtonSolver *ns = this;
-  ns->sim = &sim;
   PetscOptionsBegin(sim.comm, "newton_", "Implicit solver (-solver newton)", nullptr);
   PetscCall(PmpmOptionsInt("-load_steps",
                            "Load steps from zero to the full load, 1..100000 (the fewest "
                            "under -newton_cell_fraction; a step whose solve fails is halved up "
                            "to -newton_max_cuts times)",
-                           nullptr, ns->load_steps, &ns->load_steps, nullptr));
+                           nullptr, ns.load_steps, &ns.load_steps, nullptr));
   PetscCall(PmpmOptionsInt("-max_cuts",
                            "Halvings in a row of a failed load step below the nominal one, 0..30 "
                            "(a step failing at the last ends the stage NOT converged: a collapse)",
-                           nullptr, ns->max_cuts, &ns->max_cuts, nullptr));
+                           nullptr, ns.max_cuts, &ns.max_cuts, nullptr));
   PetscCall(PmpmOptionsInt("-equilibrium_steps",
                            "Most equilibrium steps at full load on the reset grid to reach -tol, "
                            "0..1000",
-                           nullptr, ns->max_equilibrium, &ns->max_equilibrium, nullptr));
+                           nullptr, ns.max_equilibrium, &ns.max_equilibrium, nullptr));
   PetscCall(PmpmOptionsReal("-cell_fraction",
                             "Adaptive load steps: the largest displacement increment of a step "
                             "in cells, 0 <= f <= 1 (0: off, the -newton_load_steps equal steps)",
-                            nullptr, ns->cell_fraction, &ns->cell_fraction, nullptr));
+                            nullptr, ns.cell_fraction, &ns.cell_fraction, nullptr));
   PetscCall(PmpmOptionsReal("-small_cut",
                             "Nodes with less than this share of the largest nodal mass are held "
                             "(du = 0: the small-cut nodes), 0 <= s < 0.1",
-                            nullptr, ns->small_cut, &ns->small_cut, nullptr));
+                            nullptr, ns.small_cut, &ns.small_cut, nullptr));
   PetscOptionsEnd();
-  PetscCheck(ns->small_cut >= 0 && ns->small_cut < 0.1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-newton_small_cut must be in [0, 0.1) (got %g)", ns->small_cut);
-  PetscCheck(ns->cell_fraction >= 0 && ns->cell_fraction <= 1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-newton_cell_fraction must be in [0, 1] (got %g; 0: off)", ns->cell_fraction);
-  PetscCheck(ns->load_steps >= 1 && ns->load_steps <= 100000, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-newton_load_steps must be in 1..100000 (got %" PetscInt_FMT ")", ns->load_steps);
-  PetscCheck(ns->max_cuts >= 0 && ns->max_cuts <= 30, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-newton_max_cuts must be in 0..30 (got %" PetscInt_FMT ")", ns->max_cuts);
+  PetscCheck(ns.small_cut >= 0 && ns.small_cut < 0.1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-newton_small_cut must be in [0, 0.1) (got %g)", ns.small_cut);
+  PetscCheck(ns.cell_fraction >= 0 && ns.cell_fraction <= 1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-newton_cell_fraction must be in [0, 1] (got %g; 0: off)", ns.cell_fraction);
+  PetscCheck(ns.load_steps >= 1 && ns.load_steps <= 100000, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-newton_load_steps must be in 1..100000 (got %" PetscInt_FMT ")", ns.load_steps);
+  PetscCheck(ns.max_cuts >= 0 && ns.max_cuts <= 30, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-newton_max_cuts must be in 0..30 (got %" PetscInt_FMT ")", ns.max_cuts);
   PetscCheck(
-      ns->max_equilibrium >= 0 && ns->max_equilibrium <= 1000, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-      "-newton_equilibrium_steps must be in 0..1000 (got %" PetscInt_FMT ")", ns->max_equilibrium);
-  if (!help) PetscCall(CheckSupported(sim, *ns));
+      ns.max_equilibrium >= 0 && ns.max_equilibrium <= 1000, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+      "-newton_equilibrium_steps must be in 0..1000 (got %" PetscInt_FMT ")", ns.max_equilibrium);
+  PetscFunctionReturn(0);
+}
+
+// The solve's DMDA: the explicit grid's nodes and partition, DIM dofs, a box stencil as wide as
+// the shape's support (uGIMP: 3 nodes per direction, so couplings reach 2 nodes; a chain couples
+// the nodes of neighbouring points up to a cell apart, one node farther); its matrix (not under
+// -help), its global numbering (global_dof) and the solver's vectors.
+PetscErrorCode CreateGrid(NewtonSolver &ns, Simulation &sim, bool help) {
+  PetscInt M, N, px, py;
+  const PetscInt *lx, *ly;
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetInfo(sim.grid.da, nullptr, &M, &N, nullptr, &px, &py, nullptr, nullptr, nullptr,
+                        nullptr, nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(sim.grid.da, &lx, &ly, nullptr));
+  PetscInt width = sim.set.shape == ShapeKind::Linear ? LinearShape::NS - 1 : UGIMPShape::NS - 1;
+  if (!sim.chains.empty()) width = UGIMPShape::NS;
+  ns.width = width;
+  PetscCall(DMDACreate2d(sim.comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX, M, N,
+                         px, py, DIM, width, lx, ly, &ns.da));
+  PetscCall(DMSetUp(ns.da));
+  PetscCall(DMDAGetCorners(ns.da, &ns.s[0], &ns.s[1], nullptr, &ns.m[0], &ns.m[1], nullptr));
+  PetscCall(
+      DMDAGetGhostCorners(ns.da, &ns.gs[0], &ns.gs[1], nullptr, &ns.gm[0], &ns.gm[1], nullptr));
+  if (!help) PetscCall(DMCreateMatrix(ns.da, &ns.J)); // -help: the options only, no matrix
+  bool project = false;
+  for (const Chain &c : sim.chains) project = project || c.strain_projection;
+  if (!help && project) { // the projected chain coupling reaches beyond the stencil
+    PetscCall(MatSetOption(ns.J, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_FALSE));
+    PetscCall(MatSetOption(ns.J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  }
+  const PetscInt *ox, *oy;
+  PetscCall(DMDAGetOwnershipRanges(ns.da, &ox, &oy, nullptr));
+  ns.xs.assign(px + 1, 0);
+  ns.ys.assign(py + 1, 0);
+  for (PetscInt r = 0; r < px; ++r) ns.xs[r + 1] = ns.xs[r] + ox[r];
+  for (PetscInt r = 0; r < py; ++r) ns.ys[r + 1] = ns.ys[r] + oy[r];
+  ns.roff.assign(px * py + 1, 0);
+  for (PetscInt r = 0; r < px * py; ++r)
+    ns.roff[r + 1] = ns.roff[r] + ox[r % px] * oy[r / px] * DIM;
+  PetscCall(DMCreateGlobalVector(ns.da, &ns.U));
+  PetscCall(VecDuplicate(ns.U, &ns.R));
+  PetscCall(VecDuplicate(ns.U, &ns.fext));
+  PetscCall(VecDuplicate(ns.U, &ns.maskG));
+  PetscCall(VecDuplicate(ns.U, &ns.R0));
+  PetscCall(DMCreateLocalVector(ns.da, &ns.Uloc));
+  PetscCall(VecDuplicate(ns.Uloc, &ns.Rloc));
+  PetscCall(VecDuplicate(ns.Uloc, &ns.maskL));
+  PetscCall(VecDuplicate(ns.Uloc, &ns.kinL));
+  PetscFunctionReturn(0);
+}
+
+// The SNES on the DMDA: Newton with the bt line search, MUMPS LU, pmpm's BoomerAMG defaults; then
+// every -snes_/-ksp_/-pc_ option, and which tolerances the user gave.
+PetscErrorCode CreateSNES(NewtonSolver &ns, Simulation &sim) {
+  PetscBool set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(SNESCreate(sim.comm, &ns.snes));
+  PetscCall(SNESSetDM(ns.snes, ns.da));
+  PetscCall(SNESSetFunction(ns.snes, ns.R, FormResidual, &ns));
+  PetscCall(SNESSetJacobian(ns.snes, ns.J, ns.J, FormJacobian, &ns));
+  PetscCall(SNESSetType(ns.snes, SNESNEWTONLS));
+  SNESLineSearch ls;
+  PetscCall(SNESGetLineSearch(ns.snes, &ls));
+  // bt: backtracking with the Armijo condition, one residual per trial length, the full step
+  // whenever it decreases |R| enough (the quadratic rate near equilibrium); l2 spends extra
+  // residuals on every iteration, basic has no fallback but the load step's halving
+  PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBT));
+  PetscCall(SNESSetTolerances(ns.snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, kMaxIterations,
+                              PETSC_DEFAULT));
+  KSP ksp;
+  PC pc;
+  PetscCall(SNESGetKSP(ns.snes, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(BoomerAMGDefaults());
+  PetscCall(SNESSetFromOptions(ns.snes));
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-snes_atol", &set));
+  ns.atol_given = set;
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-snes_rtol", &set));
+  ns.rtol_given = set;
+  PetscCall(SNESGetTolerances(ns.snes, nullptr, &ns.rtol, nullptr, nullptr, nullptr));
+  // read by SNESSolve, after main's unused-option check: mark them used here
+  for (const char *o : {"-snes_test_jacobian", "-snes_test_jacobian_view", "-snes_converged_reason",
+                        "-ksp_converged_reason"})
+    PetscCall(PetscOptionsHasName(nullptr, nullptr, o, &set));
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+// Read the -newton_* options, refuse what Newton cannot solve yet (chains in contact, frictional
+// interfaces, stages without a load path, materials without a consistent tangent, ...) with a
+// clear error, and create the SNES on its own DMDA (DIM dofs per node, box stencil as wide as the
+// shape's support) with every -snes_/-ksp_/-pc_ option applied. With -help only lists the
+// options.
+PetscErrorCode NewtonSolver::setup(Simulation &sim) {
+  PetscBool help = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  this->sim = &sim;
+  PetscCall(ReadOptions(*this, sim));
+  if (!help) PetscCall(CheckSupported(sim, *this));
   if (!ev_residual) {
     PetscClassId cls;
     PetscCall(PetscClassIdRegister("pmpm newton", &cls));
@@ -821,83 +1062,9 @@ PetscErrorCode NewtonSolver::setup(Simulation &sim) {
     PetscCall(PetscLogEventRegister("NewtonSolve", cls, &ev_solve));
     PetscCall(PetscLogEventRegister("NewtonCommit", cls, &ev_commit));
   }
-  for (const auto &m : sim.mats) ns->kref = std::fmax(ns->kref, m.model->wave_modulus());
-
-  // The solve's DMDA: the explicit grid's nodes and partition, DIM dofs, a box stencil as wide as
-  // the shape's support (uGIMP: 3 nodes per direction, so couplings reach 2 nodes).
-  PetscInt M, N, px, py;
-  const PetscInt *lx, *ly;
-  PetscCall(DMDAGetInfo(sim.grid.da, nullptr, &M, &N, nullptr, &px, &py, nullptr, nullptr, nullptr,
-                        nullptr, nullptr, nullptr, nullptr));
-  PetscCall(DMDAGetOwnershipRanges(sim.grid.da, &lx, &ly, nullptr));
-  // A chain couples the nodes of neighbouring points (up to a cell apart), one node farther.
-  PetscInt width = sim.set.shape == ShapeKind::Linear ? LinearShape::NS - 1 : UGIMPShape::NS - 1;
-  if (!sim.chains.empty()) width = UGIMPShape::NS;
-  ns->width = width;
-  PetscCall(DMDACreate2d(sim.comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX, M, N,
-                         px, py, DIM, width, lx, ly, &ns->da));
-  PetscCall(DMSetUp(ns->da));
-  PetscCall(DMDAGetCorners(ns->da, &ns->s[0], &ns->s[1], nullptr, &ns->m[0], &ns->m[1], nullptr));
-  PetscCall(DMDAGetGhostCorners(ns->da, &ns->gs[0], &ns->gs[1], nullptr, &ns->gm[0], &ns->gm[1],
-                                nullptr));
-  if (!help) PetscCall(DMCreateMatrix(ns->da, &ns->J)); // -help: the options only, no matrix
-  bool project = false;
-  for (const Chain &c : sim.chains) project = project || c.strain_projection;
-  if (!help && project) { // the projected chain coupling reaches beyond the stencil
-    PetscCall(MatSetOption(ns->J, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_FALSE));
-    PetscCall(MatSetOption(ns->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
-  }
-  {
-    const PetscInt *ox, *oy;
-    PetscCall(DMDAGetOwnershipRanges(ns->da, &ox, &oy, nullptr));
-    ns->xs.assign(px + 1, 0);
-    ns->ys.assign(py + 1, 0);
-    for (PetscInt r = 0; r < px; ++r) ns->xs[r + 1] = ns->xs[r] + ox[r];
-    for (PetscInt r = 0; r < py; ++r) ns->ys[r + 1] = ns->ys[r] + oy[r];
-    ns->roff.assign(px * py + 1, 0);
-    for (PetscInt r = 0; r < px * py; ++r)
-      ns->roff[r + 1] = ns->roff[r] + ox[r % px] * oy[r / px] * DIM;
-  }
-  PetscCall(DMCreateGlobalVector(ns->da, &ns->U));
-  PetscCall(VecDuplicate(ns->U, &ns->R));
-  PetscCall(VecDuplicate(ns->U, &ns->fext));
-  PetscCall(VecDuplicate(ns->U, &ns->maskG));
-  PetscCall(VecDuplicate(ns->U, &ns->R0));
-  PetscCall(DMCreateLocalVector(ns->da, &ns->Uloc));
-  PetscCall(VecDuplicate(ns->Uloc, &ns->Rloc));
-  PetscCall(VecDuplicate(ns->Uloc, &ns->maskL));
-
-  PetscCall(SNESCreate(sim.comm, &ns->snes));
-  PetscCall(SNESSetDM(ns->snes, ns->da));
-  PetscCall(SNESSetFunction(ns->snes, ns->R, FormResidual, ns));
-  PetscCall(SNESSetJacobian(ns->snes, ns->J, ns->J, FormJacobian, ns));
-  PetscCall(SNESSetType(ns->snes, SNESNEWTONLS));
-  SNESLineSearch ls;
-  PetscCall(SNESGetLineSearch(ns->snes, &ls));
-  // bt: backtracking with the Armijo condition, one residual per trial length, the full step
-  // whenever it decreases |R| enough (the quadratic rate near equilibrium); l2 spends extra
-  // residuals on every iteration, basic has no fallback but the load step's halving
-  PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBT));
-  PetscCall(SNESSetTolerances(ns->snes, PETSC_DEFAULT, 1e-10, PETSC_DEFAULT, kMaxIterations,
-                              PETSC_DEFAULT));
-  KSP ksp;
-  PC pc;
-  PetscCall(SNESGetKSP(ns->snes, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  PetscCall(BoomerAMGDefaults());
-  PetscCall(SNESSetFromOptions(ns->snes));
-  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-snes_atol", &set));
-  ns->atol_given = set;
-  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-snes_rtol", &set));
-  ns->rtol_given = set;
-  PetscCall(SNESGetTolerances(ns->snes, nullptr, &ns->rtol, nullptr, nullptr, nullptr));
-  // read by SNESSolve, after main's unused-option check: mark them used here
-  for (const char *o : {"-snes_test_jacobian", "-snes_test_jacobian_view", "-snes_converged_reason",
-                        "-ksp_converged_reason"})
-    PetscCall(PetscOptionsHasName(nullptr, nullptr, o, &set));
+  for (const auto &m : sim.mats) kref = std::fmax(kref, m.model->wave_modulus());
+  PetscCall(CreateGrid(*this, sim, help));
+  PetscCall(CreateSNES(*this, sim));
   PetscFunctionReturn(0);
 }
 
@@ -906,30 +1073,27 @@ PetscErrorCode NewtonSolver::destroy() {
   PetscFunctionBeginUser;
   PetscCall(SNESDestroy(&ns->snes));
   PetscCall(MatDestroy(&ns->J));
-  for (Vec *v : {&ns->U, &ns->R, &ns->fext, &ns->maskG, &ns->R0, &ns->Uloc, &ns->Rloc, &ns->maskL})
+  for (Vec *v : {&ns->U, &ns->R, &ns->fext, &ns->maskG, &ns->R0, &ns->Uloc, &ns->Rloc, &ns->maskL,
+                 &ns->kinL})
     PetscCall(VecDestroy(v));
   PetscCall(DMDestroy(&ns->da));
   PetscFunctionReturn(0);
 }
 
-// Equilibrium of the current stage by load steps (-newton_load_steps), then equilibrium steps at
-// full load until the unbalanced-force ratio of relaxation (StaticResidual) is <= -tol.
-PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
-  NewtonSolver &ns = *this;
-  RunState &run = sim.run;
-  const Settings &s = sim.set;
+namespace {
+// The current stage's load path, from what the scene says it changes (Scene::stage_change; a
+// scene may also move supports, SupportMotion), and what the progress line calls it. CheckSupported
+// refused the other changes; a scene's begin_stage may not switch a chain's faces from bonded
+// either.
+PetscErrorCode StagePath(NewtonSolver &ns, LoadPath &path, const char **what) {
+  Simulation &sim = *ns.sim;
   PetscFunctionBeginUser;
-  sim.resume = false;
-  run.stop_stage = false;
-  run.converged = false;
-  run.stage_step = 0;
-  const double t_start = MPI_Wtime();
-  ns.t_stage = t_start;
-  // the stage's load path (CheckSupported refused the other changes; a scene's begin_stage may
-  // not switch a chain's faces from bonded either)
   const StageChange change = sim.scene->stage_change(sim.stage);
+  auto *motion = dynamic_cast<SupportMotion *>(sim.scene.get());
+  const bool moving =
+      change == StageChange::Other && sim.stage > 0 && motion && motion->moves_supports(sim.stage);
   PetscCheck(change == StageChange::Loads || change == StageChange::Shrink ||
-                 change == StageChange::Void,
+                 change == StageChange::Void || moving,
              sim.comm, PETSC_ERR_SUP, "-solver newton: stage %d changes %s; use -solver relaxation",
              (int)sim.stage, StageChangeNames[(int)change]);
   for (const Chain &c : sim.chains)
@@ -939,63 +1103,73 @@ PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
                "-solver relaxation",
                (int)sim.stage, c.name.c_str(), FaceTypeNames[(int)c.top.type],
                FaceTypeNames[(int)c.bottom.type]);
-  LoadPath path;
   path.ramp_loads = change == StageChange::Loads;
   path.shrink = change == StageChange::Shrink ? sim.stage_shrink : 0.0;
   path.release = change == StageChange::Void;
-  const char *what = path.ramp_loads ? "the loads from zero"
-                     : path.release  ? "a void's forces released at full load"
-                                     : "shrinkage at full load";
-  if (!s.quiet)
+  path.supports = moving ? motion : nullptr;
+  ns.support_du.clear();
+  if (moving) PetscCall(motion->support_displacement(sim, sim.stage, ns.support_du));
+  *what = path.ramp_loads ? "the loads from zero"
+          : path.release  ? "a void's forces released at full load"
+          : moving        ? "supports moved at full load"
+                          : "shrinkage at full load";
+  PetscFunctionReturn(0);
+}
+
+// A stage that cannot go on (a load step failed at the last halving, or an equilibrium step
+// failed) ends as relaxation's capped stage: not converged, the last committed state.
+PetscErrorCode Collapse(NewtonSolver &ns, const LoadPath &path, double t, double target,
+                        SNESConvergedReason reason, bool equilibrium) {
+  Simulation &sim = *ns.sim;
+  RunState &run = sim.run;
+  const Settings &s = sim.set;
+  PetscFunctionBeginUser;
+  PetscCall(StaticResidual(sim, s.shape, &run.ratio));
+  run.converged = false;
+  run.stage_seconds = MPI_Wtime() - ns.t_stage;
+  run.wall_seconds += run.stage_seconds;
+  if (s.quiet) PetscFunctionReturn(0);
+  if (equilibrium)
     PetscCall(PetscPrintf(sim.comm,
-                          "pmpm %s: %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g m, shape "
-                          "%s, -solver newton: %" PetscInt_FMT " load steps, tolerance %g; stage "
-                          "%d: %s%s\n",
-                          s.scene.c_str(), sim.ncell[0], sim.ncell[1], s.h,
-                          ShapeKindNames[(int)s.shape], ns.load_steps, s.tol, (int)sim.stage, what,
-                          path.ramp_loads ? "" : " (stage fraction per step)"));
-  if (path.release) PetscCall(ReleaseStart(ns));
-  // load steps. A step whose solve fails (SNES diverged, the line search failed, or its iteration
-  // cap) is retried at half the increment, up to -newton_max_cuts halvings below the nominal step
-  // in a row; each converged step doubles the increment back toward the nominal one. A step that
-  // fails at the smallest increment ends the stage out of equilibrium (Collapse below). Under
-  // -newton_cell_fraction f the first step sizes them all: from the unloaded state its increment
-  // is the load's alone, |du| / h per unit load (later steps also carry the grid reset's
-  // correction, which does not shrink with them), so the step count is ceil(that / f), the first
-  // step redone when it moved more than f cells.
+                          "NOT converged: stage %d's equilibrium step at full load did not "
+                          "converge (SNES: %s) with unbalanced-force ratio %.3e > %g (%.2f "
+                          "s): the stage cannot reach equilibrium (a collapse). See "
+                          "-snes_converged_reason -snes_monitor.\n",
+                          (int)sim.stage, SNESConvergedReasons[reason], run.ratio, s.tol,
+                          run.stage_seconds));
+  else
+    PetscCall(PetscPrintf(
+        sim.comm,
+        "NOT converged: stage %d stopped at %s %.6g with unbalanced-force ratio %.3e > %g "
+        "(%.2f s): the load step to %.6g did not converge (SNES: %s) at %" PetscInt_FMT
+        " halvings of the nominal step (-newton_max_cuts), so the stage finds no "
+        "equilibrium beyond %.6g of its path: a collapse, unless more halvings "
+        "(-newton_max_cuts) or load steps (-newton_load_steps) carry it further.\n",
+        (int)sim.stage, path.ramp_loads ? "load factor" : "stage fraction", t, run.ratio, s.tol,
+        run.stage_seconds, target, SNESConvergedReasons[reason], ns.max_cuts, t));
+  PetscFunctionReturn(0);
+}
+
+// The stage's load steps from t = 0 to 1 on its path. A step whose solve fails (SNES diverged,
+// the line search failed, or its iteration cap) is retried at half the increment, up to
+// -newton_max_cuts halvings below the nominal step in a row; each converged step doubles the
+// increment back toward the nominal one. A step that fails at the smallest increment ends the
+// stage out of equilibrium (Collapse). Under -newton_cell_fraction f the first step sizes them
+// all: from the unloaded state its increment is the load's alone, |du| / h per unit load (later
+// steps also carry the grid reset's correction, which does not shrink with them), so the step
+// count is ceil(that / f), the first step redone when it moved more than f cells. Returns the
+// halvings and whether the stage collapsed.
+PetscErrorCode LoadSteps(NewtonSolver &ns, const LoadPath &path, PetscInt *total_cuts,
+                         bool *collapsed) {
+  Simulation &sim = *ns.sim;
+  const Settings &s = sim.set;
+  PetscFunctionBeginUser;
   double nominal = 1.0 / double(ns.load_steps);
   double t = 0; // the path parameter: the load factor in stage 0
-  PetscInt cuts = 0, total_cuts = 0;
+  PetscInt cuts = 0;
   bool sized = ns.cell_fraction <= 0;
-  auto Collapse = [&](double target, SNESConvergedReason reason,
-                      bool equilibrium) -> PetscErrorCode {
-    PetscFunctionBeginUser;
-    PetscCall(StaticResidual(sim, s.shape, &run.ratio));
-    run.converged = false;
-    run.stage_seconds = MPI_Wtime() - t_start;
-    run.wall_seconds += run.stage_seconds;
-    if (!s.quiet) {
-      if (equilibrium)
-        PetscCall(PetscPrintf(sim.comm,
-                              "NOT converged: stage %d's equilibrium step at full load did not "
-                              "converge (SNES: %s) with unbalanced-force ratio %.3e > %g (%.2f "
-                              "s): the stage cannot reach equilibrium (a collapse). See "
-                              "-snes_converged_reason -snes_monitor.\n",
-                              (int)sim.stage, SNESConvergedReasons[reason], run.ratio, s.tol,
-                              run.stage_seconds));
-      else
-        PetscCall(PetscPrintf(
-            sim.comm,
-            "NOT converged: stage %d stopped at %s %.6g with unbalanced-force ratio %.3e > %g "
-            "(%.2f s): the load step to %.6g did not converge (SNES: %s) at %" PetscInt_FMT
-            " halvings of the nominal step (-newton_max_cuts), so the stage finds no "
-            "equilibrium beyond %.6g of its path: a collapse, unless more halvings "
-            "(-newton_max_cuts) or load steps (-newton_load_steps) carry it further.\n",
-            (int)sim.stage, path.ramp_loads ? "load factor" : "stage fraction", t, run.ratio, s.tol,
-            run.stage_seconds, target, SNESConvergedReasons[reason], ns.max_cuts, t));
-    }
-    PetscFunctionReturn(0);
-  };
+  *total_cuts = 0;
+  *collapsed = false;
   while (t < 1.0 - 1e-12) {
     const double dl = nominal * std::ldexp(1.0, -static_cast<int>(cuts));
     const double target = std::fmin(1.0, t + dl);
@@ -1017,11 +1191,12 @@ PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
     }
     if (reason <= 0) {
       if (cuts >= ns.max_cuts) {
-        PetscCall(Collapse(target, reason, false));
+        PetscCall(Collapse(ns, path, t, target, reason, false));
+        *collapsed = true;
         PetscFunctionReturn(0);
       }
       ++cuts;
-      ++total_cuts;
+      ++*total_cuts;
       ++ns.halvings;
       if (!s.quiet)
         PetscCall(PetscPrintf(sim.comm, "  load step to %.6g failed (%s): step halved to %.4g\n",
@@ -1032,7 +1207,17 @@ PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
     t = target;
     if (cuts > 0) --cuts; // back toward the nominal step after a cut
   }
-  // equilibrium steps on the reset grid until relaxation's criterion holds
+  PetscFunctionReturn(0);
+}
+
+// Equilibrium steps on the reset grid at full load until relaxation's criterion holds (at most
+// -newton_equilibrium_steps); one that fails ends the stage out of equilibrium (Collapse).
+PetscErrorCode EquilibriumSteps(NewtonSolver &ns, const LoadPath &path, bool *collapsed) {
+  Simulation &sim = *ns.sim;
+  RunState &run = sim.run;
+  const Settings &s = sim.set;
+  PetscFunctionBeginUser;
+  *collapsed = false;
   PetscCall(StaticResidual(sim, s.shape, &run.ratio));
   if (!s.quiet)
     PetscCall(PetscPrintf(sim.comm,
@@ -1043,7 +1228,8 @@ PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
     bool rejected;
     PetscCall(LoadStep(ns, path, 1.0, 1.0, false, true, &reason, &rejected));
     if (reason <= 0) {
-      PetscCall(Collapse(1.0, reason, true));
+      PetscCall(Collapse(ns, path, 1.0, 1.0, reason, true));
+      *collapsed = true;
       PetscFunctionReturn(0);
     }
     PetscCall(StaticResidual(sim, s.shape, &run.ratio));
@@ -1053,18 +1239,54 @@ PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
                             "(-tol %g)\n",
                             k + 1, run.ratio, s.tol));
   }
-  run.converged = run.ratio <= s.tol;
-  run.stage_seconds = MPI_Wtime() - t_start;
-  run.wall_seconds += run.stage_seconds;
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+// Equilibrium of the current stage by load steps (-newton_load_steps), then equilibrium steps at
+// full load until the unbalanced-force ratio of relaxation (StaticResidual) is <= -tol; with
+// moving supports, the force on them at the end (Simulation::support_force).
+PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
+  NewtonSolver &ns = *this;
+  RunState &run = sim.run;
+  const Settings &s = sim.set;
+  PetscFunctionBeginUser;
+  sim.resume = false;
+  run.stop_stage = false;
+  run.converged = false;
+  run.stage_step = 0;
+  ns.t_stage = MPI_Wtime();
+  LoadPath path;
+  const char *what = "";
+  PetscCall(StagePath(ns, path, &what));
   if (!s.quiet)
     PetscCall(PetscPrintf(sim.comm,
-                          "%s: unbalanced-force ratio %.3e %s %g after %" PetscInt_FMT
-                          " load steps (%" PetscInt_FMT " in all, %" PetscInt_FMT
-                          " halved), %" PetscInt_FMT " Newton and %" PetscInt_FMT
-                          " linear iterations (%.2f s)\n",
-                          run.converged ? "converged" : "NOT converged", run.ratio,
-                          run.converged ? "<=" : ">", s.tol, run.stage_step, ns.solved_steps,
-                          total_cuts, ns.newton_its, ns.linear_its, run.stage_seconds));
+                          "pmpm %s: %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g m, shape "
+                          "%s, -solver newton: %" PetscInt_FMT " load steps, tolerance %g; stage "
+                          "%d: %s%s\n",
+                          s.scene.c_str(), sim.ncell[0], sim.ncell[1], s.h,
+                          ShapeKindNames[(int)s.shape], ns.load_steps, s.tol, (int)sim.stage, what,
+                          path.ramp_loads ? "" : " (stage fraction per step)"));
+  if (path.release) PetscCall(ReleaseStart(ns));
+  PetscInt cuts = 0;
+  bool collapsed = false;
+  PetscCall(LoadSteps(ns, path, &cuts, &collapsed));
+  if (!collapsed) PetscCall(EquilibriumSteps(ns, path, &collapsed));
+  if (!collapsed) {
+    run.converged = run.ratio <= s.tol;
+    run.stage_seconds = MPI_Wtime() - ns.t_stage;
+    run.wall_seconds += run.stage_seconds;
+    if (!s.quiet)
+      PetscCall(PetscPrintf(sim.comm,
+                            "%s: unbalanced-force ratio %.3e %s %g after %" PetscInt_FMT
+                            " load steps (%" PetscInt_FMT " in all, %" PetscInt_FMT
+                            " halved), %" PetscInt_FMT " Newton and %" PetscInt_FMT
+                            " linear iterations (%.2f s)\n",
+                            run.converged ? "converged" : "NOT converged", run.ratio,
+                            run.converged ? "<=" : ">", s.tol, run.stage_step, ns.solved_steps,
+                            cuts, ns.newton_its, ns.linear_its, run.stage_seconds));
+  }
+  PetscCall(SupportReaction(ns));
   PetscFunctionReturn(0);
 }
 

@@ -48,6 +48,24 @@ public:
   }
 };
 
+// A scene whose later stages move supports (the nodal dofs of Simulation::prescribed, such as the
+// trapdoor's door) implements this beside Scene: a displacement-driven solver (Newton) imposes
+// the stage's support displacement over its load steps instead of the velocities relaxation
+// integrates step by step. Collective where it takes a Simulation.
+class SupportMotion {
+public:
+  virtual ~SupportMotion() = default;
+  // Whether stage k (>= 1) changes nothing but the supports' positions.
+  virtual bool moves_supports(PetscInt k) const = 0;
+  // Stage k's displacement of every entry of Simulation::prescribed over the stage (m), called
+  // after begin_stage; from then on the solver drives the supports (their velocities are zero and
+  // the scene's monitor leaves them alone).
+  virtual PetscErrorCode support_displacement(Simulation &, PetscInt k,
+                                              std::vector<double> &du) = 0;
+  // The share t in (0, 1] of the stage's displacement imposed so far (after each converged step).
+  virtual PetscErrorCode supports_moved(Simulation &, double t) = 0;
+};
+
 // The solver table: one entry per solver, in -help's order (the first is the default).
 struct SolverEntry {
   const char *name;                             // -solver's value

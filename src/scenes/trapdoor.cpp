@@ -14,12 +14,15 @@
 // the edge): the force conjugate to V. Stage 0 brings the soil to equilibrium under its weight
 // with the door held (its pressure is gamma H); stage k lowers the door to the k-th entry of
 // -trapdoor_displacements (x B) at a steady -trapdoor_rate (cells per step), holds it, and
-// relaxes to equilibrium; end_stage records the door's displacement and pressure.
+// relaxes to equilibrium; end_stage records the door's displacement and pressure. Under -solver
+// newton a stage imposes the door's displacement instead, in load steps (SupportMotion,
+// docs/newton.md), and the door's force is the residual's on the same weighted dofs.
 //
 // The soil follows the door on the grid: the door is a region of nodes at the door's velocity, not
 // a surface, so its top is resolved to a cell. For displacements below a cell (the minimum of the
-// curve) that is the base itself. The curve depends on the door's rate as well as on the cell:
-// a faster door drops soil onto itself and reads more pressure (docs/trapdoor.md).
+// curve) that is the base itself. Under relaxation the curve depends on the door's rate as well as
+// on the cell: a faster door drops soil onto itself and reads more pressure (docs/trapdoor.md);
+// Newton's has no rate.
 #include "pmpm/options.hpp"
 #include "pmpm/checkpoint.hpp"
 #include "pmpm/cycle.hpp"
@@ -38,7 +41,7 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 } // namespace
 
-class TrapdoorScene final : public Scene {
+class TrapdoorScene final : public Scene, public SupportMotion {
   double B_ = 1.0, H_ = 0, W_ = 0;
   std::vector<double> disp_; // door displacement of each stage, over B
   double rate_ = 1e-5;       // door displacement per step, over the cell size
@@ -46,6 +49,7 @@ class TrapdoorScene final : public Scene {
   PetscInt base_j_ = 0;      // node row of the base (y = 0)
   // the door's motion: displacement so far (m, down), the stage's target, speed (m/s, down)
   double d_ = 0, target_ = 0, speed_ = 0;
+  double d0_ = 0; // -solver newton: the door's displacement at the stage's start (m)
   // per stage: door displacement (m), pressure on the door (Pa), converged, steps
   std::vector<double> rec_d_, rec_p_;
   std::vector<int> rec_conv_;
@@ -237,6 +241,27 @@ public:
                             "(%s)\n",
                             (int)k, d_ / B_, p / (gamma(sim) * H_),
                             sim.run.converged ? "equilibrium" : "NOT converged"));
+    PetscFunctionReturn(0);
+  }
+
+  // -solver newton (solver.hpp): a lowering stage imposes the door's displacement over its load
+  // steps, (0, -(target - d) share) on each door dof, the base's other dofs held; the door's
+  // velocity stays 0, so monitor leaves it alone.
+  bool moves_supports(PetscInt k) const override { return k >= 1; }
+  PetscErrorCode support_displacement(Simulation &sim, PetscInt, std::vector<double> &du) override {
+    PetscFunctionBeginUser;
+    const PrescribedVelocity &pv = sim.prescribed;
+    du.assign(pv.key.size(), 0.0);
+    for (size_t k = 0; k < pv.key.size(); ++k)
+      if (pv.key[k] % DIM == 1) du[k] = -(target_ - d_) * pv.weight[k];
+    d0_ = d_;
+    speed_ = 0;
+    set_door_speed(sim);
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode supports_moved(Simulation &, double t) override {
+    PetscFunctionBeginUser;
+    d_ = t >= 1.0 ? target_ : d0_ + t * (target_ - d0_);
     PetscFunctionReturn(0);
   }
 
