@@ -89,10 +89,10 @@ PetscErrorCode ParticlesRestoreView(Particles &P, ParticleView &v);
 // migrate, which drops particles outside the box and reaches only the neighbouring ranks.
 PetscErrorCode ParticlesMigrate(Particles &P);
 // The same on grid g in any dimension. 2D: the call above. 3D (DMSwarm 3.18's PIC point location
-// is broken in 3D): each particle that left is sent to the rank owning its cell by the owner
-// table of g's DMDA (any rank, not only neighbours; one all-to-all), particles outside the box are
-// dropped as DMSwarm drops them, and the staying particles keep their order, the arrivals after
-// them in the senders' rank order.
+// is broken in 3D): each particle that left is sent to the rank owning its cell (owned-cell boxes
+// of every rank, RecordsRedistribute: any rank, not only neighbours; collective), particles
+// outside the box are dropped as DMSwarm drops them, and the staying particles keep their order,
+// the arrivals after them in the senders' rank order.
 template <int D> PetscErrorCode ParticlesMigrate(Particles &P, const GridT<D> &g);
 PetscErrorCode ParticlesGlobalCount(Particles &P, PetscInt *n);
 
