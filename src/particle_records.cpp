@@ -57,28 +57,37 @@ PetscErrorCode ParticlesUnpack(Particles &P, const std::vector<double> &rec) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode RecordsRedistribute(MPI_Comm comm, const Grid &g, PetscInt w,
+template <int D>
+PetscErrorCode RecordsRedistribute(MPI_Comm comm, const GridT<D> &g, PetscInt w,
                                    std::vector<double> &rec) {
   PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  std::vector<PetscInt> box(4 * size);
-  PetscInt mine[4] = {g.cell_lo[0], g.cell_hi[0], g.cell_lo[1], g.cell_hi[1]};
-  PetscCallMPI(MPI_Allgather(mine, 4, MPIU_INT, box.data(), 4, MPIU_INT, comm));
+  // every rank's owned cells, [lo, hi) per direction
+  std::vector<PetscInt> box(2 * D * size);
+  PetscInt mine[2 * D];
+  for (int d = 0; d < D; ++d) {
+    mine[2 * d] = g.cell_lo[d];
+    mine[2 * d + 1] = g.cell_hi[d];
+  }
+  PetscCallMPI(MPI_Allgather(mine, 2 * D, MPIU_INT, box.data(), 2 * D, MPIU_INT, comm));
+  auto owns = [&](int r, const PetscInt *c) {
+    for (int d = 0; d < D; ++d)
+      if (c[d] < box[2 * D * r + 2 * d] || c[d] >= box[2 * D * r + 2 * d + 1]) return false;
+    return true;
+  };
   const size_t n = rec.size() / w;
   std::vector<int> dest(n), scount(size, 0), rcount(size), sdisp(size), rdisp(size);
   for (size_t p = 0; p < n; ++p) {
-    PetscInt c[DIM];
-    for (int d = 0; d < DIM; ++d) {
+    PetscInt c[D];
+    for (int d = 0; d < D; ++d) {
       c[d] = static_cast<PetscInt>((rec[p * w + d] - g.origin[d]) / g.h);
       c[d] = std::min(std::max(c[d], (PetscInt)0), g.ncell[d] - 1);
     }
     int r = 0;
-    while (r < size && !(c[0] >= box[4 * r] && c[0] < box[4 * r + 1] && c[1] >= box[4 * r + 2] &&
-                         c[1] < box[4 * r + 3]))
-      ++r;
-    PetscCheck(r < size, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no rank owns cell (%d, %d)", (int)c[0],
-               (int)c[1]);
+    while (r < size && !owns(r, c)) ++r;
+    PetscCheck(r < size, PETSC_COMM_SELF, PETSC_ERR_PLIB, "no rank owns cell (%d, %d, %d)",
+               (int)c[0], (int)c[1], D == 3 ? (int)c[D - 1] : 0);
     dest[p] = r;
     scount[r] += static_cast<int>(w);
   }
@@ -101,5 +110,10 @@ PetscErrorCode RecordsRedistribute(MPI_Comm comm, const Grid &g, PetscInt w,
   rec.swap(recv);
   PetscFunctionReturn(0);
 }
+
+template PetscErrorCode RecordsRedistribute<2>(MPI_Comm, const GridT<2> &, PetscInt,
+                                               std::vector<double> &);
+template PetscErrorCode RecordsRedistribute<3>(MPI_Comm, const GridT<3> &, PetscInt,
+                                               std::vector<double> &);
 
 } // namespace pmpm

@@ -1,9 +1,9 @@
-// The background grid (the driver's, DIM = 2 today): a DMDA of (n+1)^DIM nodes over the scene's
-// box, uniform cell size h. Nodal fields live in one vector. Every body on the grid (a continuum
-// region with its own velocity field, or a membrane chain, chain.hpp) has a block of GridDof::NDOF
-// values per node; a scene without chains has one body, and the blocks are followed by `extra`
-// values per node (a chain's geometry sums, ChainDof). Particle-to-grid sums go into the local
-// (ghosted) vector and are added across ranks; grid-to-particle reads ghosted values.
+// The background grid: a DMDA of (n+1)^D nodes over the scene's box (D = 2, 3; the driver's is
+// DIM = 2 today), uniform cell size h. Nodal fields live in one vector. Every body on the grid (a
+// continuum region with its own velocity field, or a membrane chain, chain.hpp) has a block of
+// GridDof::NDOF values per node; a scene without chains has one body, and the blocks are followed
+// by `extra` values per node (a chain's geometry sums, ChainDof). Particle-to-grid sums go into the
+// local (ghosted) vector and are added across ranks; grid-to-particle reads ghosted values.
 #pragma once
 #include "pmpm/config.hpp"
 #include <petscdmda.h>
@@ -62,16 +62,18 @@ template <int D> struct GridViewT {
 };
 using GridView = GridViewT<DIM>;
 
-struct Grid {
+// The grid of dimension D (2, 3): Grid (= GridT<DIM>) is the driver's, GridT<3> the 3D one.
+template <int D> struct GridT {
+  static_assert(D == 2 || D == 3, "2D or 3D");
   DM da = nullptr;
   double h = 0;
-  double origin[DIM] = {0, 0};
-  PetscInt ncell[DIM] = {0, 0};
-  int nbody = 1, nd = GridDof::NDOF;                     // see GridView
-  bool axisymmetric = false;                             // see GridView
-  PetscInt s[DIM] = {0, 0}, m[DIM] = {0, 0};             // owned nodes
-  PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0};           // ghosted nodes
-  PetscInt cell_lo[DIM] = {0, 0}, cell_hi[DIM] = {0, 0}; // owned cells [lo, hi)
+  double origin[D] = {};
+  PetscInt ncell[D] = {};
+  int nbody = 1, nd = GridDofT<D>::NDOF;     // see GridViewT
+  bool axisymmetric = false;                 // see GridViewT
+  PetscInt s[D] = {}, m[D] = {};             // owned nodes
+  PetscInt gs[D] = {}, gm[D] = {};           // ghosted nodes
+  PetscInt cell_lo[D] = {}, cell_hi[D] = {}; // owned cells [lo, hi)
   Vec local = nullptr, global = nullptr;
   // One rank: the owned nodes are the ghosted array's interior (the ghosts are the two layers
   // outside the box), so the global vector is not used: the ghost add and the scatter have
@@ -79,38 +81,41 @@ struct Grid {
   bool shared = false;
 
   // A particle centred in cell c is owned by the rank that owns node c + 1 (DMSwarm's rule).
-  bool owns_cell(const PetscInt c[DIM]) const {
-    for (int d = 0; d < DIM; ++d)
+  bool owns_cell(const PetscInt c[D]) const {
+    for (int d = 0; d < D; ++d)
       if (c[d] < cell_lo[d] || c[d] >= cell_hi[d]) return false;
     return true;
   }
 };
+using Grid = GridT<DIM>;
 
-// Create the DMDA: ncell cells of size h from origin; stencil width 2 (uGIMP support);
-// nbody blocks of NDOF values per node followed by extra values. The partition is PETSc's (or
-// -da_processors_x/y) unless px x py ranks with lx, ly nodes per rank column and row are given
-// (balance.hpp).
-PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[DIM],
-                          const PetscInt ncell[DIM], int nbody, int extra, Grid &g,
-                          PetscInt px = PETSC_DECIDE, PetscInt py = PETSC_DECIDE,
-                          const PetscInt *lx = nullptr, const PetscInt *ly = nullptr);
-PetscErrorCode GridDestroy(Grid &g);
+// Create the DMDA (2D or 3D, box stencil): ncell cells of size h from origin; stencil width 2
+// (uGIMP support); nbody blocks of NDOF values per node followed by extra values. The partition
+// is PETSc's (or -da_processors_x/y/z) unless px x py (x pz) ranks with lx, ly (, lz) nodes per
+// rank slab along x, y (, z) are given (balance.hpp); pz and lz are for D = 3 only.
+template <int D>
+PetscErrorCode GridCreate(MPI_Comm comm, double h, const double origin[D], const PetscInt ncell[D],
+                          int nbody, int extra, GridT<D> &g, PetscInt px = PETSC_DECIDE,
+                          PetscInt py = PETSC_DECIDE, const PetscInt *lx = nullptr,
+                          const PetscInt *ly = nullptr, PetscInt pz = PETSC_DECIDE,
+                          const PetscInt *lz = nullptr);
+template <int D> PetscErrorCode GridDestroy(GridT<D> &g);
 // Zero the local vector and hand out a writable view of it (restore with GridRestoreLocal).
-PetscErrorCode GridGetLocal(Grid &g, bool zero, GridView &v);
-PetscErrorCode GridRestoreLocal(Grid &g, GridView &v);
+template <int D> PetscErrorCode GridGetLocal(GridT<D> &g, bool zero, GridViewT<D> &v);
+template <int D> PetscErrorCode GridRestoreLocal(GridT<D> &g, GridViewT<D> &v);
 // A view of the owned nodes of the global vector (for the grid update); with shared, of the owned
 // nodes of the local vector (a view that aliases GridGetLocal's: read and write different slots).
-PetscErrorCode GridGetGlobal(Grid &g, GridView &v);
-PetscErrorCode GridRestoreGlobal(Grid &g, GridView &v);
+template <int D> PetscErrorCode GridGetGlobal(GridT<D> &g, GridViewT<D> &v);
+template <int D> PetscErrorCode GridRestoreGlobal(GridT<D> &g, GridViewT<D> &v);
 // f(view) between GridGetLocal (zero as there) and GridRestoreLocal, or between GridGetGlobal and
 // GridRestoreGlobal: a view that lives for one piece of work. f returns nothing or an error code.
 template <class F> PetscErrorCode GridWithLocal(Grid &g, bool zero, F &&f);
 template <class F> PetscErrorCode GridWithGlobal(Grid &g, F &&f);
 // Sum the ghosted local contributions into the global vector (ADD_VALUES); with shared, nothing.
-PetscErrorCode GridLocalToGlobalAdd(Grid &g);
+template <int D> PetscErrorCode GridLocalToGlobalAdd(GridT<D> &g);
 // Scatter owned values (and ghosts) back into the local vector, and zero the ghost nodes outside
 // the box; with shared, only the latter.
-PetscErrorCode GridGlobalToLocal(Grid &g);
+template <int D> PetscErrorCode GridGlobalToLocal(GridT<D> &g);
 
 namespace detail {
 template <class F> PetscErrorCode CallOnView(F &f, GridView &v) {

@@ -15,9 +15,11 @@ PetscInt ParticleRecordWidth(const Particles &P);
 PetscErrorCode ParticlesPack(Particles &P, std::vector<double> &rec);
 // Replace this rank's particles by the records (in their order).
 PetscErrorCode ParticlesUnpack(Particles &P, const std::vector<double> &rec);
-// Send each record to the rank owning its cell on grid g (records of width w, the coordinates
-// first); rec becomes this rank's records, in rank order of their senders. Collective.
-PetscErrorCode RecordsRedistribute(MPI_Comm comm, const Grid &g, PetscInt w,
+// Send each record to the rank owning its cell on grid g (records of width w, the D coordinates
+// first; a record outside the box goes to the owner of the nearest cell); rec becomes this rank's
+// records, in rank order of their senders. Collective.
+template <int D>
+PetscErrorCode RecordsRedistribute(MPI_Comm comm, const GridT<D> &g, PetscInt w,
                                    std::vector<double> &rec);
 
 } // namespace pmpm
