@@ -54,14 +54,14 @@ DEGRADATION = ["-options_file", "options/cover_degradation.opts"]
 # the events of one step, by what their work grows with
 PARTICLE_EVENTS = ["P2G", "G2P", "FBar", "StressUpdate"]
 NODE_EVENTS = ["GridUpdate", "Contact", "GhostAdd", "GhostScatter"]
-# Values per grid node (src/simulation.cpp): nbody = 2 nchain + 1 blocks of GridDof::NDOF =
+# Values per grid node (src/model/simulation.cpp): nbody = 2 nchain + 1 blocks of GridDof::NDOF =
 # 1 + 3 DIM = 7 values, then ChainDof::NDOF = 9 per chain.
 NDOF, CHAIN_NDOF = 7, 9
-# The chains' allreduce: 2 DIM + 5 doubles per point (src/cycle.cpp, chain_pack).
+# The chains' allreduce: 2 DIM + 5 doubles per point (src/step/cycle.cpp, chain_pack).
 CHAIN_DOUBLES = 2 * 2 + 5
-GHOST = 2  # DMDA stencil width (src/grid.cpp)
+GHOST = 2  # DMDA stencil width (src/core/grid.cpp)
 EXCHANGES = 3  # ghost exchanges per step with a chain: GhostAdd, Contact's, GhostScatter
-ENERGY_EVERY = 5  # src/relaxation.cpp kEnergyEvery: one allreduce every 5 steps
+ENERGY_EVERY = 5  # src/solvers/relaxation.cpp kEnergyEvery: one allreduce every 5 steps
 # perf symbols of the Chain event: the owned points' work, and the work every rank repeats
 CHAIN_OWNED = ["p2g_chain", "g2p_chain", "point_halfsize", "point_frame"]
 CHAIN_REPEATED = ["chain_pack", "chain_unpack", "chain_update_tension", "chain_owner_count"]
@@ -436,9 +436,9 @@ def main():
     L += ["", "PETSc's figures are bytes and messages sent per call (the CSV log, summed over "
           "ranks); GhostAdd's include the vector scatter's one-time set-up in its first call."]
     L += ["", "Reductions counted in the code per step with a chain: "
-          f"{code_red:.1f} (src/cycle.cpp Step: the MAX and the SUM allreduce; the chain "
+          f"{code_red:.1f} (src/step/cycle.cpp Step: the MAX and the SUM allreduce; the chain "
           "buffer's allreduce; ChainReductions; "
-          f"src/relaxation.cpp: the energy check's allreduce every {ENERGY_EVERY} steps). PETSc "
+          f"src/solvers/relaxation.cpp: the energy check's allreduce every {ENERGY_EVERY} steps). PETSc "
           "counts the stage's MPI_Allreduce and MPI_Bcast calls (here less the Output and "
           "Migrate events'); the rest, "
           f"{(counts[0]['red_per_step'] - code_red) * nsteps / 4:.1f} per stage, are the "
@@ -456,8 +456,8 @@ def main():
     L += ["**Output sizes** (slope at -cell_size 0.5, -ppc 2 and 4, -checkpoint_at_stage_end; "
           "difference of file sizes / difference of particles): "
           f"particles.h5 {bpp_particles:.1f} bytes per particle (25 doubles = 200 written by "
-          f"src/output.cpp), checkpoint {bpp_checkpoint:.1f} bytes per particle (the 26 "
-          f"doubles of the swarm fields, src/particles.cpp, = 208).", ""]
+          f"src/io/output.cpp), checkpoint {bpp_checkpoint:.1f} bytes per particle (the 26 "
+          f"doubles of the swarm fields, src/core/particles.cpp, = 208).", ""]
 
     L += ["Five runs of this script on 2 December 2026 (load average 4-9 on the 2 cores) "
           "gave t_p = 169-205 ns, t_n = 130-177 ns, a repeated chain share of 2-4 % (tens of "

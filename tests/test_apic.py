@@ -1,4 +1,4 @@
-"""Affine transfers (-transfer apic, include/pmpm/affine.hpp): the free rotating block keeps its
+"""Affine transfers (-transfer apic, include/pmpm/core/affine.hpp): the free rotating block keeps its
 angular momentum to round-off; FLIP loses it. The block scene (src/scenes/block.cpp,
 options/block.opts) rotating at omega = 10 rad/s about its centre, no translation, undamped, on NP
 ranks (2: the split at x = 0.5 m runs through the block's centre, particles sweep across it).

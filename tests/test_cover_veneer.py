@@ -24,7 +24,7 @@ own toe mechanism) and 2.7 deg below the infinite slope's. Asserted, bracketing 
     cover Koerner-Soong calls stable at FS = 1 is stable in pmpm;
   - delta = delta_KS - 2.5 deg (14.4): the cover slides (no equilibrium within 4,000 steps, or a
     slip past 5 cm): the toe wedge does not hold more than the closed form allows by 2.5 deg.
-  - the scene's own Koerner-Soong FS (summary.json, include/pmpm/veneer.hpp) equals this file's
+  - the scene's own Koerner-Soong FS (summary.json, include/pmpm/scenes/veneer.hpp) equals this file's
     independent implementation at both angles (1e-9), and is 1 at delta_KS.
 """
 import csv

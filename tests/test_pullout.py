@@ -32,7 +32,7 @@ Measured, 1 rank (2 ranks agree to 1e-12), x_a and u0 error / RMS / sliding fric
   engine of this commit: mu 0.25 + 0.25: +14.1 % / 5.5 % (15848 steps); mu 0.3 + 0.4: +4.2 % /
     3.1 % (8206 steps); pulled out: +3.6 % (last quarter +1.4 %). FAILS: the friction of a sheet
     between two bodies is capped by the less-pressed of the two node rows it straddles
-    (contact_bodies, src/chain.cpp; see the pullout report), so the slip zone carries 0.5-0.99
+    (contact_bodies, src/contact/chain.cpp; see the pullout report), so the slip zone carries 0.5-0.99
     of m; at h = 0.01 m the errors grow to +51 % and +40 % (87835, 42167 steps; pulled out
     +2.5 %).
   with the chain face capacity taken from the sheet's pressure times its length at the node (a

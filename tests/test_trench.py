@@ -50,7 +50,7 @@ Bounds and why:
   14.31 kPa since the tail-share fix (1.5 % below K = 1 at h = 0.125 m), 14.17 and 14.30 before
   it, chord 14.3 and 14.5; at h = 0.25 m (13.1 kPa now, 14.16 before) printed, not asserted; well
   below the overburden of 19 kPa.
-- The contact's tail-share fix (src/chain.cpp, contact_bodies; docs/benchmarks/relaxation_steps.md)
+- The contact's tail-share fix (src/contact/chain.cpp, contact_bodies; docs/benchmarks/relaxation_steps.md)
   lets these runs settle much further within the same step budgets: unbalanced-force ratio 1e-4,
   1.4e-3 and 1.2e-2 at h = 0.25, 0.125 and 0.0625 m, against 0.05-0.15 before. Their answers now
   (2 ranks): chord sag 0.2760 / 0.2797 / 0.2846 m, mid-span strain 4.25 / 4.47 / 4.53 %, mean over

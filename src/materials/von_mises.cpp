@@ -2,7 +2,7 @@
 #include "pmpm/materials/von_mises.hpp"
 #include "pmpm/materials/registry.hpp"
 #include "pmpm/materials/tangent.hpp"
-#include "pmpm/options.hpp"
+#include "pmpm/util/options.hpp"
 
 namespace pmpm {
 

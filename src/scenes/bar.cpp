@@ -10,11 +10,11 @@
 // (V sigma : C^-1 : sigma / 2) at every step. With -transfer apic the particles start with the
 // field's gradient as their affine part (B_p = C D_p) and the kinetic energy includes it
 // (affine_kinetic, at the particles' current D_p).
-#include "pmpm/options.hpp"
-#include "pmpm/checkpoint.hpp"
-#include "pmpm/cycle.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/io/checkpoint.hpp"
+#include "pmpm/step/cycle.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <cmath>
 
 namespace pmpm {

@@ -13,11 +13,11 @@
 // With -transfer apic the particles' spin m_p (B_yx - B_xy) is part of the angular momentum
 // (affine.hpp), and the initial rigid rotation gives each particle its affine part,
 // B_p = C D_p with C = omega [0 -1; 1 0], so that the block starts as one rigid body.
-#include "pmpm/options.hpp"
-#include "pmpm/affine.hpp"
-#include "pmpm/checkpoint.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/core/affine.hpp"
+#include "pmpm/io/checkpoint.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <cmath>
 
 namespace pmpm {

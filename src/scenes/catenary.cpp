@@ -8,9 +8,9 @@
 // -catenary_second adds a second, independent chain ("liner", material -mat_liner_*) hanging
 // -catenary_second_drop below the first: several named chains per scene, each with its own
 // material, checked against its own closed form.
-#include "pmpm/options.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <cmath>
 
 namespace pmpm {

@@ -6,10 +6,10 @@
 //   linear elastic (Jaumann rate): sigma_yy = M ln J          -> J = exp(sigma / M)
 //   neo-Hookean:   sigma_yy = (lambda ln J + mu (J^2 - 1)) / J (solved by Newton)
 // For small strain both reduce to u_y = -(gamma / M)(H Y - Y^2 / 2).
-#include "pmpm/options.hpp"
+#include "pmpm/util/options.hpp"
 #include "pmpm/materials/elastic.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <cmath>
 #include <algorithm>
 #include <vector>

@@ -20,14 +20,14 @@
 // Geometry need not fit the grid: particles fill each band (waste, then each layer) column by
 // column, with the band's thickness at the column split into whole rows, so a 0.3 m layer is
 // 0.3 m thick at any cell size (blocks are at most h / ppc tall and at most h / 2, as PMPM needs).
-#include "pmpm/options.hpp"
-#include "pmpm/checkpoint.hpp"
-#include "pmpm/giroud.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/io/checkpoint.hpp"
+#include "pmpm/scenes/giroud.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/materials/registry.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
-#include "pmpm/veneer.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
+#include "pmpm/scenes/veneer.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -11,9 +11,9 @@
 // With a = 0 (solid) B = 0: the stress is uniform, sigma_rr = sigma_thth = -p_o, and u_r is linear
 // in r; the discrete equations hold that state exactly (no discretisation error), which makes it
 // the test of the axis. Small strain: the particles are compared at their initial radius.
-#include "pmpm/options.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <cmath>
 
 namespace pmpm {

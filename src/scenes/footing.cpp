@@ -18,13 +18,13 @@
 // Linear cells lock under isochoric plastic flow: without -fbar the soil holds pressures above
 // q_u (tests/test_footing.py shows by how much). Dilatant Drucker-Prager (psi > 0) needs
 // -fbar_pressure cell with -fbar (antilock.hpp; options/footing_cphi.opts).
-#include "pmpm/options.hpp"
-#include "pmpm/checkpoint.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/io/checkpoint.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/materials/registry.hpp"
 #include "pmpm/materials/von_mises.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -16,10 +16,10 @@
 // be rough enough to hold the sheet on the base, so the exact solution is the block sliding on a
 // fixed sheet, as above with mu the upper face's. The ends are free (-incline_chain_pin pins both,
 // as supports); results add the sheet's largest displacement.
-#include "pmpm/options.hpp"
-#include "pmpm/checkpoint.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/io/checkpoint.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <cmath>
 
 namespace pmpm {

@@ -15,10 +15,10 @@
 // displacement, chain strain = current/initial length of the mid-surface chain, the particles'
 // own axial strain from F, axial stress), settlements, and Giroud's analytical solution in the
 // paper's form (simulated sag plugged in) and in the self-consistent form (J = E t).
-#include "pmpm/options.hpp"
-#include "pmpm/giroud.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/scenes/giroud.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

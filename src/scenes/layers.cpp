@@ -8,9 +8,9 @@
 // and each layer's law gives J(Y) (linear elastic, Jaumann rate: sigma = M ln J; neo-Hookean:
 // sigma = (lambda ln J + mu (J^2 - 1)) / J), u_y(Y) = int_0^Y (J - 1) dY, piecewise per layer
 // (docs/method.md, section 2.2 for one layer). Small strain: u_y = int sigma / M.
-#include "pmpm/options.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <cmath>
 
 namespace pmpm {

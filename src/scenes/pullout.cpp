@@ -32,10 +32,10 @@
 // = m L (the whole sheet slides at full friction), with end_clearance_cells (the pulled end's
 // distance from the right face, in cells) to show the sheet stayed clear of the roller's nodes.
 // pullout_history.csv has the friction force and the pulled end's u_x after every step.
-#include "pmpm/options.hpp"
-#include "pmpm/checkpoint.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/io/checkpoint.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <cmath>
 #include <cstdio>
 

@@ -1,6 +1,6 @@
 // The scene table: one line per scene (name, factory, one-line description). -scene's help, the
 // error for an unknown scene, -help's scene list and docs/options.md all come from it.
-#include "pmpm/simulation.hpp"
+#include "pmpm/model/simulation.hpp"
 
 namespace pmpm {
 

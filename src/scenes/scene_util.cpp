@@ -1,6 +1,6 @@
-#include "pmpm/scene_util.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include "pmpm/materials/elastic.hpp"
-#include "pmpm/options.hpp"
+#include "pmpm/util/options.hpp"
 #include <cmath>
 #include <cstring>
 #include <memory>

@@ -23,13 +23,13 @@
 // curve) that is the base itself. Under relaxation the curve depends on the door's rate as well as
 // on the cell: a faster door drops soil onto itself and reads more pressure (docs/trapdoor.md);
 // Newton's has no rate.
-#include "pmpm/options.hpp"
-#include "pmpm/checkpoint.hpp"
-#include "pmpm/cycle.hpp"
-#include "pmpm/giroud.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/io/checkpoint.hpp"
+#include "pmpm/step/cycle.hpp"
+#include "pmpm/scenes/giroud.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

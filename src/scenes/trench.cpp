@@ -44,11 +44,11 @@
 //     arc(y) = (B + u_L + u_R)(1 + T / J), T = p B Omega(y), with (d) the simulated pull-in,
 //     (e) the closed-form pull-in u = T^2 / (2 m J) per side (rigid soil, full friction on both
 //     faces), (f) the same with the simulated mobilised shear, (g) (e) under the overburden.
-#include "pmpm/options.hpp"
-#include "pmpm/checkpoint.hpp"
-#include "pmpm/giroud.hpp"
-#include "pmpm/output.hpp"
-#include "pmpm/scene_util.hpp"
+#include "pmpm/util/options.hpp"
+#include "pmpm/io/checkpoint.hpp"
+#include "pmpm/scenes/giroud.hpp"
+#include "pmpm/io/output.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

@@ -1,7 +1,7 @@
 // The solver table: one line per equilibrium solver (name, factory, one-line description).
 // -solver's help, its allowed values, the error for an unknown one and docs/options.md all come
 // from it.
-#include "pmpm/solver.hpp"
+#include "pmpm/model/solver.hpp"
 
 namespace pmpm {
 

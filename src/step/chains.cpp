@@ -2,7 +2,7 @@
 // their own body's nodal block, the stacked bodies' contact at their nodes after the momentum
 // balance, the points moved by the owner of their cell and shared by one allreduce, and their
 // share of the step's report.
-#include "pmpm/step_hooks.hpp"
+#include "pmpm/step/step_hooks.hpp"
 #include <cmath>
 
 namespace pmpm {

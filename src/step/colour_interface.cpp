@@ -1,9 +1,9 @@
 // The colour interface (-interface_type other than bonded, without chains; interface.hpp) in the
 // explicit step: body 1 (colour 1) has its own nodal field on a second grid, whose velocities
 // the friction-limited interface update sets where the bodies meet; G2P reads both fields.
-#include "pmpm/interface.hpp"
-#include "pmpm/shape_cpgimp.hpp"
-#include "pmpm/step_hooks.hpp"
+#include "pmpm/contact/interface.hpp"
+#include "pmpm/core/shape_cpgimp.hpp"
+#include "pmpm/step/step_hooks.hpp"
 
 namespace pmpm {
 

@@ -1,8 +1,8 @@
 // cpGIMP's support check after every explicit step (-shape cpgimp, shape_cpgimp.hpp): every
 // block must fit the 4-node support for the next step (half-size <= one cell); otherwise stop
 // with the particle, its stretch and what to change.
-#include "pmpm/shape_cpgimp.hpp"
-#include "pmpm/step_hooks.hpp"
+#include "pmpm/core/shape_cpgimp.hpp"
+#include "pmpm/step/step_hooks.hpp"
 
 namespace pmpm {
 

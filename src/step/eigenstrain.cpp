@@ -1,8 +1,8 @@
 // An imposed eigenstrain in the explicit step (a stage's shrinkage of degrading waste,
 // degradation.hpp): this step's increment per particle, and its power, which the stress update
 // subtracts from the strain increment.
-#include "pmpm/degradation.hpp"
-#include "pmpm/step_hooks.hpp"
+#include "pmpm/core/degradation.hpp"
+#include "pmpm/step/step_hooks.hpp"
 
 namespace pmpm {
 

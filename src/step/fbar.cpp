@@ -2,8 +2,8 @@
 // (and, with -fbar_pressure cell, the group pressure P2G's internal force takes, conjugate to the
 // averaged volume change), then each particle's volume change over the step replaced by its
 // group's.
-#include "pmpm/antilock.hpp"
-#include "pmpm/step_hooks.hpp"
+#include "pmpm/core/antilock.hpp"
+#include "pmpm/step/step_hooks.hpp"
 
 namespace pmpm {
 

@@ -1,6 +1,6 @@
 // The step's optional physics in the order the phases call them (step_hooks.hpp). The chains and
 // the interface never run together (the interface's own grid exists only without chains).
-#include "pmpm/step_hooks.hpp"
+#include "pmpm/step/step_hooks.hpp"
 
 namespace pmpm {
 

@@ -9,7 +9,7 @@
 // Tolerances: the quantities are O(1) sums of a few O(1) products (cells, m/s); 1e-12 leaves
 // room for the eps / w_min amplification where a node's weight is small (w >= 1e-3 drawn).
 #include "check.hpp"
-#include "pmpm/affine.hpp"
+#include "pmpm/core/affine.hpp"
 #include <cmath>
 
 using namespace pmpm;

@@ -7,7 +7,7 @@
 //   fbar_pressure_shift: p + shift is the group's volume-averaged pressure, and the force's power
 //   with it equals the stress power of F-bar's averaged volume rate (conjugacy), for any rates.
 #include "check.hpp"
-#include "pmpm/antilock.hpp"
+#include "pmpm/core/antilock.hpp"
 #include <cmath>
 #include <vector>
 

@@ -15,7 +15,7 @@
 //    0.905 (measured 0.912), bound 0.8.
 // Tolerances: round-off over some 60 terms per sum, 1e-13 relative.
 #include "check.hpp"
-#include "pmpm/chain.hpp"
+#include "pmpm/contact/chain.hpp"
 #include <algorithm>
 #include <cmath>
 #include <vector>

@@ -16,7 +16,7 @@
 //     Gauss-Seidel (20000 sweeps) on the normal and the tangential problems, and so does the
 //     kernel's own fallback solver.
 #include "check.hpp"
-#include "pmpm/contact_stack.hpp"
+#include "pmpm/contact/contact_stack.hpp"
 #include <algorithm>
 #include <cmath>
 #include <limits>

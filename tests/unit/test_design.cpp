@@ -2,7 +2,7 @@
 // f_h = f + C h^p on meshes h, h/2, h/4 have differences that shrink by exactly 2^p, so the
 // observed order, the Richardson extrapolation and the GCI are known in closed form.
 #include "check.hpp"
-#include "pmpm/design.hpp"
+#include "pmpm/model/design.hpp"
 #include <string>
 
 using namespace pmpm;

@@ -18,8 +18,8 @@
 // round-off, a few hundred ulps of the sums' magnitude (at most 4^3 = 64 nodes per particle and a
 // few thousand particles per sum), not model error.
 #include "check.hpp"
-#include "pmpm/affine.hpp"
-#include "pmpm/transfers.hpp"
+#include "pmpm/core/affine.hpp"
+#include "pmpm/core/transfers.hpp"
 #include <algorithm>
 #include <cmath>
 #include <vector>

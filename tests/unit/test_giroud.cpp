@@ -1,9 +1,9 @@
-// Unit test of the closed-form geomembrane-over-void solution (include/pmpm/giroud.hpp):
+// Unit test of the closed-form geomembrane-over-void solution (include/pmpm/scenes/giroud.hpp):
 // Terzaghi arching + tensioned membrane (Giroud et al. 1990), seed paper eqs. (21)-(24).
 // Expected values from docs/method.md, section 1.3. Each tolerance is half a unit in the last
 // printed digit of the reference value, so the check is "rounds to the printed number".
 #include "check.hpp"
-#include "pmpm/giroud.hpp"
+#include "pmpm/scenes/giroud.hpp"
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>

@@ -24,9 +24,9 @@
 // value; 1e-12 leaves room for other compilers, not for a lost or doubled particle (an error of
 // one particle's share, >= 1e-4 of the largest value here).
 #include "check.hpp"
-#include "pmpm/grid.hpp"
-#include "pmpm/particles.hpp"
-#include "pmpm/transfers.hpp"
+#include "pmpm/core/grid.hpp"
+#include "pmpm/core/particles.hpp"
+#include "pmpm/core/transfers.hpp"
 #include <algorithm>
 #include <cmath>
 #include <vector>

@@ -11,7 +11,7 @@
 //   particle (linear completeness of both shapes), and implicit_internal_force of a uniform P sums
 //   to zero over the nodes (the gradients of a partition of unity sum to zero).
 #include "check.hpp"
-#include "pmpm/implicit_kernels.hpp"
+#include "pmpm/solvers/implicit_kernels.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/materials/elastic.hpp"
 #include "pmpm/materials/von_mises.hpp"

@@ -9,7 +9,7 @@
 //     counted as compression or tension; a body with a tail share takes the common acceleration;
 //     a node without a normal or without body 2 is bonded.
 #include "check.hpp"
-#include "pmpm/interface.hpp"
+#include "pmpm/contact/interface.hpp"
 #include <algorithm>
 #include <cmath>
 #include <vector>

@@ -7,7 +7,7 @@
 //   p2g: conservation of mass, momentum, forces (and their first moments), particle subsets;
 //   MUSL: p2g_momentum + grid_velocity.
 #include "check.hpp"
-#include "pmpm/transfers.hpp"
+#include "pmpm/core/transfers.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

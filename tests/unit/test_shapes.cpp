@@ -10,8 +10,8 @@
 //   a cell (F = I), and its half-size from F; the second derivatives of the mpm and pmpm weights
 //   (weight_hessians, the implicit solver's reset-grid tangent) against differences of gradients.
 #include "check.hpp"
-#include "pmpm/shape.hpp"
-#include "pmpm/shape_cpgimp.hpp"
+#include "pmpm/core/shape.hpp"
+#include "pmpm/core/shape_cpgimp.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

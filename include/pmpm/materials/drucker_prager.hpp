@@ -22,7 +22,7 @@
 //
 // Valid parameter range assumed (not checked): 0 <= psi <= phi < 90 deg, H >= 0, c >= 0.
 #pragma once
-#include "pmpm/material.hpp"
+#include "pmpm/materials/material.hpp"
 #include "pmpm/materials/return_map.hpp"
 #include <petscsys.h>
 #include <cmath>

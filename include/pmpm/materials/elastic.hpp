@@ -1,6 +1,6 @@
 // Linear elastic (hypoelastic, Jaumann rate) and compressible neo-Hookean materials.
 #pragma once
-#include "pmpm/material.hpp"
+#include "pmpm/materials/material.hpp"
 #include <petscsys.h>
 #include <cmath>
 #include <memory>

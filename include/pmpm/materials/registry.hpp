@@ -17,7 +17,7 @@
 //       its options' checks (PmpmCheckInput: skipped under -help), then the model
 // (docs/developer-guide.md, "Adding a material").
 #pragma once
-#include "pmpm/material.hpp"
+#include "pmpm/materials/material.hpp"
 #include <petscsys.h>
 #include <memory>
 #include <string>

@@ -4,7 +4,7 @@
 // tensor (plane strain keeps sigma_zz, which evolves with plastic flow).
 //   p = tr(sigma)/3,  s = sigma - p I,  J2 = s:s/2.
 #pragma once
-#include "pmpm/config.hpp"
+#include "pmpm/util/config.hpp"
 #include <cmath>
 
 namespace pmpm {

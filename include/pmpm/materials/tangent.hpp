@@ -15,7 +15,7 @@
 //                    dtau = mu (dF F_tot^T + F_tot dF^T) + lambda tr(f^-1 dG) I, dF = dG F^n
 //                    dP = (dtau - tau f^-T dG^T) f^-T / J^n
 #pragma once
-#include "pmpm/material.hpp"
+#include "pmpm/materials/material.hpp"
 #include "pmpm/materials/return_map.hpp"
 
 namespace pmpm {

@@ -7,7 +7,7 @@
 // the consistency condition q_tr - 3G dgamma - sigma_y0 - H (eps_p + dgamma) = 0 is linear:
 //   dgamma = Phi_tr / (3G + H),  s = (1 - 3G dgamma / q_tr) s_tr,  p = p_tr.
 #pragma once
-#include "pmpm/material.hpp"
+#include "pmpm/materials/material.hpp"
 #include "pmpm/materials/return_map.hpp"
 #include <petscsys.h>
 #include <memory>

@@ -1,0 +1,72 @@
+// The explicit step's phases (cycle.cpp) share one StepState; each optional physics (membrane
+// chains, the colour interface, F-bar, an imposed eigenstrain, cpGIMP's support check) attaches
+// to them as a StepHook, one file each in src/step/, listed in the order they run by StepHooks()
+// (src/step/hooks.cpp). A hook's members run only in steps where it is active; a null member
+// does nothing. Hooks run once per step, never per particle.
+#pragma once
+#include "pmpm/step/cycle.hpp"
+#include "pmpm/util/log_event.hpp"
+#include <vector>
+
+namespace pmpm {
+
+// The step's -log_view events (registered by LogRegister, cycle.cpp).
+struct StepEvents {
+  PetscLogEvent p2g = 0, l2g = 0, grid = 0, g2l = 0, g2p = 0, musl = 0, stress = 0, migrate = 0,
+                iface = 0, chain = 0, contact = 0, fbar = 0, support = 0;
+};
+extern StepEvents step_events;
+
+// What the phases of one step share.
+struct StepState {
+  Simulation &sim;
+  const Load &load;
+  const double dt;
+  StepReport &rep;
+  ParticleView P;                 // this rank's particles, the whole step
+  GridView G;                     // the grid's global view during the grid update (phase 3)
+  GridUpdateParams gp;            // phase 3's parameters
+  G2PParams pp;                   // phase 5's parameters
+  const double *pshift = nullptr; // F-bar's group pressure for P2G's internal force, or null
+  GridView body;                  // body 1's local view during G2P (the interface) ...
+  const GridView *G1 = nullptr;   // ... which G2P reads through this, or null
+  const double *eigen = nullptr;  // the eigenstrain increment the stress update subtracts, or null
+  StepState(Simulation &s, const Load &l, double t, StepReport &r)
+      : sim(s), load(l), dt(t), rep(r) {}
+};
+
+// An optional physics of the step.
+struct StepHook {
+  const char *name;
+  bool (*active)(const Simulation &, const Load &);
+  // reads or changes the velocity gradient between G2P and the stress update (the stress update
+  // then cannot be fused into G2P's particle loop)
+  bool reads_gradient;
+  PetscErrorCode (*before_p2g)(StepState &);      // 0.
+  PetscErrorCode (*p2g)(StepState &);             // 1a, 1b: its own nodal values
+  PetscErrorCode (*ghost_add)(StepState &);       // 2: its grid's ghost sums (GhostAdd's event)
+  PetscErrorCode (*after_ghost_add)(StepState &); // 2b.
+  PetscErrorCode (*grid_update)(StepState &);     // 3a, 3b: after the nodal momentum balance
+  PetscErrorCode (*ghost_scatter)(StepState &);   // 4: its grid's ghosts (GhostScatter's event)
+  PetscErrorCode (*before_g2p)(StepState &);      // 5: what G2P reads (StepState::G1)
+  PetscErrorCode (*after_g2p)(StepState &);       // 5', 5a.
+  PetscErrorCode (*stress)(StepState &);          // 6: before the materials (StressUpdate's event)
+  PetscErrorCode (*reduce)(StepState &);          // 7: its share of the step's report
+  PetscErrorCode (*after_step)(StepState &);      // 8: after the migration
+};
+
+// Every hook, in the order the phases call them.
+const std::vector<const StepHook *> &StepHooks();
+
+// The hooks active in one step.
+struct ActiveHooks {
+  const StepHook *hook[8] = {};
+  int n = 0;
+  bool reads_gradient = false;
+};
+ActiveHooks ActiveStepHooks(const Simulation &sim, const Load &load);
+// Call one member of every active hook that has it, in order.
+PetscErrorCode RunHooks(const ActiveHooks &h, PetscErrorCode (*StepHook::*member)(StepState &),
+                        StepState &S);
+
+} // namespace pmpm

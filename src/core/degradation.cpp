@@ -1,0 +1,39 @@
+// Waste degradation: the eigenstrain increment per particle (degradation.hpp).
+#include "pmpm/core/degradation.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace pmpm {
+
+double shrinkage_grade(const Shrinkage &s, const double X[DIM]) {
+  const double x = X[0], y = X[1];
+  if (y < s.y_lo || y > s.y_hi) return 0;
+  double gx = 1;
+  if (x < s.x_lo) gx = s.taper > 0 ? std::max(0.0, 1 - (s.x_lo - x) / s.taper) : 0.0;
+  if (x > s.x_hi) gx = s.taper > 0 ? std::max(0.0, 1 - (x - s.x_hi) / s.taper) : 0.0;
+  const double span = s.y_hi - s.y_lo;
+  const double r = span > 0 && std::isfinite(span) ? (y - s.y_lo) / span : 0.5;
+  return gx * (s.grade_bottom + r * (s.grade_top - s.grade_bottom));
+}
+
+double shrinkage_increment(const ParticleView &P, const Shrinkage &s, double amount,
+                           std::vector<double> &eigen) {
+  eigen.assign(static_cast<size_t>(P.n) * 3, 0.0);
+  double power = 0;
+  for (PetscInt p = 0; p < P.n; ++p) {
+    if (!s.degrades[P.mat[p]]) continue;
+    const double ev = amount * shrinkage_grade(s, P.x0 + p * DIM);
+    if (ev == 0) continue;
+    double *e = &eigen[3 * p];
+    if (s.mode == ShrinkMode::Vertical) {
+      e[1] = -ev;
+    } else {
+      e[0] = e[1] = e[2] = -ev / 3;
+    }
+    const double *sg = P.stress + p * NSTRESS;
+    power -= P.vol[p] * (sg[0] * e[0] + sg[1] * e[1] + sg[2] * e[2]);
+  }
+  return power;
+}
+
+} // namespace pmpm

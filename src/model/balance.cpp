@@ -1,0 +1,299 @@
+#include "pmpm/util/options.hpp"
+#include "pmpm/model/balance.hpp"
+#include "pmpm/util/json.hpp"
+#include "pmpm/core/particle_records.hpp"
+#include "pmpm/model/simulation.hpp"
+#include <algorithm>
+#include <cmath>
+
+namespace pmpm {
+
+namespace {
+PetscLogEvent ev_balance = 0;
+
+std::string json_array(const std::vector<PetscInt> &a) {
+  std::string s = "[";
+  for (size_t k = 0; k < a.size(); ++k) s += (k ? ", " : "") + std::to_string(a[k]);
+  return s + "]";
+}
+
+// Cell bounds of the rank columns (rows): column i owns cells [b[i], b[i+1]). A particle centred
+// in cell c belongs to the rank owning node c + 1 (Grid::owns_cell), so a column owning nodes
+// [s, s + l) owns cells [s - 1, s + l - 1), the first from 0 and the last to ncell.
+std::vector<PetscInt> CellBounds(const PetscInt *l, PetscInt np, PetscInt ncell) {
+  std::vector<PetscInt> b(np + 1, 0);
+  PetscInt s = 0;
+  for (PetscInt i = 0; i + 1 < np; ++i) {
+    s += l[i];
+    b[i + 1] = s - 1;
+  }
+  b[np] = ncell;
+  return b;
+}
+
+// The inverse: node counts per column from cell bounds.
+std::vector<PetscInt> NodeCounts(const std::vector<PetscInt> &b) {
+  const size_t np = b.size() - 1;
+  std::vector<PetscInt> l(np);
+  for (size_t i = 0; i < np; ++i)
+    l[i] = (i + 1 < np ? b[i + 1] + 1 : b[np] + 1) - (i == 0 ? 0 : b[i] + 1);
+  return l;
+}
+
+// Cut per-cell counts into np parts of near-equal sums at the cumulative quantiles. Every part is
+// at least kMinCells wide, so every rank owns at least two nodes (DMDA's minimum for stencil
+// width 2); among cuts equally close to a quantile (a run of empty cells) the one nearest the
+// even split of cells. Empty if the cells are too few.
+constexpr PetscInt kMinCells = 2;
+std::vector<PetscInt> SplitCounts(const double *cnt, PetscInt ncell, PetscInt np) {
+  std::vector<double> cum(ncell + 1, 0.0);
+  for (PetscInt c = 0; c < ncell; ++c) cum[c + 1] = cum[c] + cnt[c];
+  std::vector<PetscInt> b(np + 1, 0);
+  b[np] = ncell;
+  for (PetscInt i = 1; i < np; ++i) {
+    const PetscInt lo = b[i - 1] + kMinCells, hi = ncell - kMinCells * (np - i);
+    if (lo > hi) return {};
+    const double target = cum[ncell] * i / np, even = (double)ncell * i / np;
+    PetscInt best = lo;
+    for (PetscInt k = lo; k <= hi; ++k) {
+      const double dk = std::fabs(cum[k] - target), db = std::fabs(cum[best] - target);
+      if (dk < db || (dk == db && std::fabs(k - even) < std::fabs(best - even))) best = k;
+    }
+    b[i] = best;
+  }
+  return b;
+}
+
+// The cell of a particle centre (as the scenes place it), clamped to the grid.
+PetscInt CellOf(const Simulation &sim, const double *x, int d) {
+  const PetscInt c = (PetscInt)std::floor((x[d] - sim.origin[d]) / sim.set.h);
+  return std::min(std::max(c, (PetscInt)0), sim.ncell[d] - 1);
+}
+
+// max / mean of per-rank counts.
+double Imbalance(const std::vector<double> &counts) {
+  double total = 0, most = 0;
+  for (double c : counts) {
+    total += c;
+    most = std::max(most, c);
+  }
+  return total > 0 ? most / (total / counts.size()) : 1.0;
+}
+
+// The particle-balanced partition of px x py ranks for the particles items[k] (positions by
+// pos(item)): cell bounds per rank column and row (empty if the cells are too few) and the
+// imbalance it would have. Every rank bins its own particles.
+template <class Items, class Pos>
+PetscErrorCode Plan(const Simulation &sim, PetscInt px, PetscInt py, const Items &items, Pos pos,
+                    std::vector<PetscInt> &bx, std::vector<PetscInt> &by, double *predicted) {
+  PetscFunctionBeginUser;
+  // particles per cell column, then per cell row
+  const PetscInt nx = sim.ncell[0], ny = sim.ncell[1];
+  std::vector<double> cnt(nx + ny, 0.0);
+  for (const auto &q : items) {
+    cnt[CellOf(sim, pos(q), 0)] += 1;
+    cnt[nx + CellOf(sim, pos(q), 1)] += 1;
+  }
+  PetscCallMPI(
+      MPI_Allreduce(MPI_IN_PLACE, cnt.data(), (int)cnt.size(), MPI_DOUBLE, MPI_SUM, sim.comm));
+  bx = SplitCounts(cnt.data(), nx, px);
+  by = SplitCounts(cnt.data() + nx, ny, py);
+  *predicted = 1e300;
+  if (bx.empty() || by.empty()) {
+    bx.clear();
+    PetscFunctionReturn(0);
+  }
+  std::vector<double> blk(px * py, 0.0);
+  for (const auto &q : items) {
+    const PetscInt i =
+        std::upper_bound(bx.begin(), bx.end(), CellOf(sim, pos(q), 0)) - bx.begin() - 1;
+    const PetscInt j =
+        std::upper_bound(by.begin(), by.end(), CellOf(sim, pos(q), 1)) - by.begin() - 1;
+    blk[j * px + i] += 1;
+  }
+  PetscCallMPI(
+      MPI_Allreduce(MPI_IN_PLACE, blk.data(), (int)blk.size(), MPI_DOUBLE, MPI_SUM, sim.comm));
+  *predicted = Imbalance(blk);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode RankImbalance(MPI_Comm comm, PetscInt n, double *imb) {
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<double> counts(size);
+  double local = (double)n;
+  PetscCallMPI(MPI_Allgather(&local, 1, MPI_DOUBLE, counts.data(), 1, MPI_DOUBLE, comm));
+  *imb = Imbalance(counts);
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode BalanceFromOptions(MPI_Comm comm, Balance &b) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Load balance (particles per rank)", nullptr);
+  PetscCall(PmpmOptionsEnum("-balance",
+                            "Partition: none (PETSc's even split of the nodes), setup (split "
+                            "the particles per cell column and row evenly, at setup) or run "
+                            "(setup, and again at a stage's end when -balance_threshold is "
+                            "passed)",
+                            nullptr, BalanceModeNames, (PetscEnum)b.mode, (PetscEnum *)&b.mode,
+                            nullptr));
+  PetscCall(PmpmOptionsReal("-balance_gain",
+                            "Rebuild the grid only if it lowers the imbalance (max / mean "
+                            "particles per rank) by more than this fraction, 0 <= g < 1",
+                            nullptr, b.gain, &b.gain, nullptr));
+  PetscCall(PmpmOptionsReal("-balance_threshold",
+                            "-balance run: rebalance at a stage's end when max / mean particles "
+                            "per rank exceeds this, >= 1",
+                            nullptr, b.threshold, &b.threshold, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(b.gain >= 0 && b.gain < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-balance_gain must be in [0, 1) (got %g)", b.gain);
+  PetscCheck(b.threshold >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-balance_threshold must be >= 1 (got %g)", b.threshold);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BalanceSetup(Simulation &sim, ParticleList &init) {
+  Balance &b = sim.balance;
+  PetscInt px, py;
+  PetscFunctionBeginUser;
+  if (!ev_balance) {
+    PetscClassId cls;
+    PetscCall(PetscClassIdRegister("pmpm balance", &cls));
+    PetscCall(PetscLogEventRegister("Balance", cls, &ev_balance));
+  }
+  PetscCall(PetscLogEventBegin(ev_balance, 0, 0, 0, 0));
+  const double t0 = MPI_Wtime();
+  PetscCall(RankImbalance(sim.comm, (PetscInt)init.size(), &b.before));
+  b.after = b.before;
+  PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr, nullptr,
+                        nullptr, nullptr, nullptr, nullptr, nullptr));
+  if (b.mode != BalanceMode::None && sim.size > 1) {
+    std::vector<PetscInt> bx, by;
+    double predicted = 1e300;
+    PetscCall(Plan(
+        sim, px, py, init, [](const ParticleInit &q) { return q.x; }, bx, by, &predicted));
+    if (!bx.empty() && predicted < b.before * (1 - b.gain)) {
+      PetscCall(BalanceRebuildGrid(sim, px, py, NodeCounts(bx), NodeCounts(by)));
+      init.clear();
+      PetscCall(sim.scene->generate(sim, init));
+      PetscCall(RankImbalance(sim.comm, (PetscInt)init.size(), &b.after));
+      b.rebuilt = true;
+    }
+  }
+  double dt = MPI_Wtime() - t0;
+  PetscCallMPI(MPI_Allreduce(&dt, &b.seconds, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
+  PetscCall(PetscLogEventEnd(ev_balance, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BalanceRebuildGrid(Simulation &sim, PetscInt px, PetscInt py,
+                                  const std::vector<PetscInt> &lx,
+                                  const std::vector<PetscInt> &ly) {
+  PetscFunctionBeginUser;
+  const bool iface = sim.iface_grid.active;
+  const int nbody = sim.grid.nbody, extra = sim.grid.nd - nbody * GridDof::NDOF;
+  PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
+  PetscCall(InterfaceGridDestroy(sim.iface_grid));
+  PetscCall(GridDestroy(sim.grid));
+  PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody, extra, sim.grid, px, py,
+                       lx.data(), ly.data()));
+  if (iface) PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
+  PetscCall(ParticlesCreate(sim.grid, sim.parts));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BalancePartition(Simulation &sim, std::vector<PetscInt> &part) {
+  PetscInt px, py;
+  const PetscInt *lx, *ly;
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr, nullptr,
+                        nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(sim.grid.da, &lx, &ly, nullptr));
+  part = {px, py};
+  part.insert(part.end(), lx, lx + px);
+  part.insert(part.end(), ly, ly + py);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BalanceRun(Simulation &sim) {
+  Balance &b = sim.balance;
+  PetscInt px, py, n;
+  PetscFunctionBeginUser;
+  if (b.mode != BalanceMode::Run || sim.size == 1) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(ev_balance, 0, 0, 0, 0));
+  const double t0 = MPI_Wtime();
+  PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
+  double now;
+  PetscCall(RankImbalance(sim.comm, n, &now));
+  if (now > b.threshold) {
+    PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr,
+                          nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
+    ParticleView P;
+    PetscCall(ParticlesGetView(sim.parts, P));
+    std::vector<PetscInt> idx(P.n), bx, by;
+    for (PetscInt p = 0; p < P.n; ++p) idx[p] = p;
+    const double *x = P.x;
+    double predicted = 1e300;
+    PetscCall(Plan(
+        sim, px, py, idx, [x](PetscInt p) { return x + p * DIM; }, bx, by, &predicted));
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    if (!bx.empty() && predicted < now * (1 - b.gain)) {
+      std::vector<double> rec;
+      PetscCall(ParticlesPack(sim.parts, rec));
+      PetscCall(BalanceRebuildGrid(sim, px, py, NodeCounts(bx), NodeCounts(by)));
+      PetscCall(RecordsRedistribute(sim.comm, sim.grid, ParticleRecordWidth(sim.parts), rec));
+      PetscCall(ParticlesUnpack(sim.parts, rec));
+      PetscCall(SimulationIndexParticles(sim));
+      PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
+      b.last_before = now;
+      PetscCall(RankImbalance(sim.comm, n, &b.last_after));
+      ++b.rebalances;
+      if (!sim.set.quiet)
+        PetscCall(PetscPrintf(sim.comm,
+                              "stage %d: rebalanced, particles per rank max/mean %.3f -> %.3f\n",
+                              (int)sim.stage, b.last_before, b.last_after));
+    }
+  }
+  double dt = MPI_Wtime() - t0;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &dt, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
+  b.run_seconds += dt;
+  PetscCall(PetscLogEventEnd(ev_balance, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PartitionJson(Simulation &sim, std::string &json) {
+  PetscInt px, py, n;
+  const PetscInt *lx, *ly;
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr, nullptr,
+                        nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(sim.grid.da, &lx, &ly, nullptr));
+  PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
+  std::vector<PetscInt> counts(sim.size);
+  PetscCallMPI(MPI_Allgather(&n, 1, MPIU_INT, counts.data(), 1, MPIU_INT, sim.comm));
+  const double imbalance = Imbalance(std::vector<double>(counts.begin(), counts.end()));
+  const Balance &b = sim.balance;
+  const char *sep = ",\n    ";
+  json = "\"partition\": {\n    \"processes\": [" + std::to_string(px) + ", " + std::to_string(py) +
+         "]" + sep + "\"origin\": [" + json_num(sim.origin[0]) + ", " + json_num(sim.origin[1]) +
+         "]" + sep + "\"nodes_x\": " + json_array(std::vector<PetscInt>(lx, lx + px)) + sep +
+         "\"nodes_y\": " + json_array(std::vector<PetscInt>(ly, ly + py)) + sep +
+         "\"cell_bounds_x\": " + json_array(CellBounds(lx, px, sim.ncell[0])) + sep +
+         "\"cell_bounds_y\": " + json_array(CellBounds(ly, py, sim.ncell[1])) + sep +
+         "\"particles_per_rank\": " + json_array(counts) + sep + json_kv("imbalance", imbalance) +
+         "\n  },\n  \"balance\": {\n    \"mode\": \"" + BalanceModeNames[(int)b.mode] + "\"" + sep +
+         json_kv("gain", b.gain) + sep + json_kv("imbalance_before", b.before) + sep +
+         json_kv("imbalance_after", b.after) + sep +
+         json_kv("rebuilt", b.rebuilt ? "true" : "false") + sep + json_kv("seconds", b.seconds) +
+         sep + json_kv("threshold", b.threshold) + sep +
+         json_kv("rebalances", static_cast<double>(b.rebalances)) + sep +
+         json_kv("last_imbalance_before", b.last_before) + sep +
+         json_kv("last_imbalance_after", b.last_after) + sep +
+         json_kv("run_seconds", b.run_seconds) + "\n  }";
+  PetscFunctionReturn(0);
+}
+
+} // namespace pmpm
