@@ -482,8 +482,8 @@ PetscErrorCode WriteRun(Simulation &sim, PetscViewer v, bool in_stage) {
   PetscCall(ModelOptions(model));
   PetscCall(PutString(v, R, "model_options", Serialise(model)));
   PetscCall(PutReal(v, R, "cell_size", sim.set.h));
-  PetscCall(PutInt(v, R, "ncell_x", sim.ncell[0]));
-  PetscCall(PutInt(v, R, "ncell_y", sim.ncell[1]));
+  PetscCall(PutInt(v, R, "ncell_x", sim.model.ncell[0]));
+  PetscCall(PutInt(v, R, "ncell_y", sim.model.ncell[1]));
   PetscCall(PutInt(v, R, "particles_setup", sim.particles_setup));
   PetscCall(PutInt(v, R, "chains", static_cast<PetscInt>(sim.chains.size())));
   PetscCall(PutInt(v, R, "ranks", sim.size));
@@ -513,7 +513,7 @@ PetscErrorCode WriteRunArrays(Simulation &sim, PetscViewer v) {
       v, "capped_stages", std::vector<double>(r.capped_stages.begin(), r.capped_stages.end())));
   // the surface loads (every rank holds them alike; a scene may have changed them)
   std::vector<double> loads;
-  for (const ParticleLoad &L : sim.loads)
+  for (const ParticleLoad &L : sim.model.loads)
     for (const double *a : {L.traction, L.tface, L.lp}) loads.insert(loads.end(), a, a + DIM);
   PetscCall(CheckpointWriteArray(v, "loads", loads));
   // the partition the particles' blocks belong to (-balance run may have moved it)
@@ -681,14 +681,14 @@ PetscErrorCode ReadStatsLoads(Simulation &sim, PetscViewer v, const std::string 
   PetscCall(CheckpointReadArray(v, "capped_stages", capped));
   sim.run.capped_stages.assign(capped.begin(), capped.end());
   PetscCall(CheckpointReadArray(v, "loads", loads));
-  PetscCheck(loads.size() == 3 * DIM * sim.loads.size(), sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+  PetscCheck(loads.size() == 3 * DIM * sim.model.loads.size(), sim.comm, PETSC_ERR_FILE_UNEXPECTED,
              "-restart %s: the checkpoint has %d loaded particles, these options give %d", F,
-             (int)(loads.size() / (3 * DIM)), (int)sim.loads.size());
-  for (size_t k = 0; k < sim.loads.size(); ++k)
+             (int)(loads.size() / (3 * DIM)), (int)sim.model.loads.size());
+  for (size_t k = 0; k < sim.model.loads.size(); ++k)
     for (int d = 0; d < DIM; ++d) {
-      sim.loads[k].traction[d] = loads[3 * DIM * k + d];
-      sim.loads[k].tface[d] = loads[3 * DIM * k + DIM + d];
-      sim.loads[k].lp[d] = loads[3 * DIM * k + 2 * DIM + d];
+      sim.model.loads[k].traction[d] = loads[3 * DIM * k + d];
+      sim.model.loads[k].tface[d] = loads[3 * DIM * k + DIM + d];
+      sim.model.loads[k].lp[d] = loads[3 * DIM * k + 2 * DIM + d];
     }
   PetscCheck(is.size() == 4 && cs.size() == 5 + sim.chains.size(), sim.comm,
              PETSC_ERR_FILE_UNEXPECTED, "-restart %s: damaged checkpoint (/run stats)", F);

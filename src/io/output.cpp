@@ -216,14 +216,14 @@ PetscErrorCode OutputSummary(Simulation &sim, const std::string &results,
     PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
     const Settings &s = sim.set;
     std::string iface;
-    if (sim.iface.type != InterfaceType::Bonded) {
+    if (sim.model.iface.type != InterfaceType::Bonded) {
       const double *I = sim.iface_impulse;
       const char *sep = ",\n    ";
       iface = std::string("\"interface\": {\n    \"type\": \"") +
-              InterfaceTypeNames[(int)sim.iface.type] + "\"" + sep + "\"normals\": \"" +
-              InterfaceNormalsNames[(int)sim.iface.normals] + "\"" + sep +
-              json_kv("mu_top", sim.iface.mu_top) + sep +
-              json_kv("mu_bottom", sim.iface.mu_bottom) + sep +
+              InterfaceTypeNames[(int)sim.model.iface.type] + "\"" + sep + "\"normals\": \"" +
+              InterfaceNormalsNames[(int)sim.model.iface.normals] + "\"" + sep +
+              json_kv("mu_top", sim.model.iface.mu_top) + sep +
+              json_kv("mu_bottom", sim.model.iface.mu_bottom) + sep +
               json_kv("normal_impulse_compression", I[0]) + sep +
               json_kv("normal_impulse_tension", I[1]) + sep +
               json_kv("tension_ratio", I[0] > 0 ? I[1] / I[0] : 0.0) + "\n  },\n  ";
@@ -240,7 +240,7 @@ PetscErrorCode OutputSummary(Simulation &sim, const std::string &results,
         "  \"cfl\": %s,\n  \"steps\": %d,\n  \"time\": %s,\n  %s,\n"
         "  \"converged\": %s,\n  %s,\n  \"tolerance\": %s,\n  \"migrations\": %d,\n"
         "  %s,\n  %s%s,\n  \"results\": {\n    %s\n  }\n}\n",
-        s.scene.c_str(), sim.size, (int)n, (int)sim.ncell[0], (int)sim.ncell[1],
+        s.scene.c_str(), sim.size, (int)n, (int)sim.model.ncell[0], (int)sim.model.ncell[1],
         json_kv("h", s.h).c_str(), (int)s.ppc, ShapeKindNames[(int)s.shape],
         json_num(s.cfl).c_str(), (int)sim.run.step, json_num(sim.run.time).c_str(),
         json_kv("wall_seconds", sim.run.wall_seconds).c_str(), sim.run.converged ? "true" : "false",

@@ -66,8 +66,8 @@ std::vector<PetscInt> SplitCounts(const double *cnt, PetscInt ncell, PetscInt np
 
 // The cell of a particle centre (as the scenes place it), clamped to the grid.
 PetscInt CellOf(const Simulation &sim, const double *x, int d) {
-  const PetscInt c = (PetscInt)std::floor((x[d] - sim.origin[d]) / sim.set.h);
-  return std::min(std::max(c, (PetscInt)0), sim.ncell[d] - 1);
+  const PetscInt c = (PetscInt)std::floor((x[d] - sim.model.origin[d]) / sim.set.h);
+  return std::min(std::max(c, (PetscInt)0), sim.model.ncell[d] - 1);
 }
 
 // max / mean of per-rank counts.
@@ -88,7 +88,7 @@ PetscErrorCode Plan(const Simulation &sim, PetscInt px, PetscInt py, const Items
                     std::vector<PetscInt> &bx, std::vector<PetscInt> &by, double *predicted) {
   PetscFunctionBeginUser;
   // particles per cell column, then per cell row
-  const PetscInt nx = sim.ncell[0], ny = sim.ncell[1];
+  const PetscInt nx = sim.model.ncell[0], ny = sim.model.ncell[1];
   std::vector<double> cnt(nx + ny, 0.0);
   for (const auto &q : items) {
     cnt[CellOf(sim, pos(q), 0)] += 1;
@@ -198,8 +198,8 @@ PetscErrorCode BalanceRebuildGrid(Simulation &sim, PetscInt px, PetscInt py,
   PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
   PetscCall(InterfaceGridDestroy(sim.iface_grid));
   PetscCall(GridDestroy(sim.grid));
-  PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody, extra, sim.grid, px, py,
-                       lx.data(), ly.data()));
+  PetscCall(GridCreate(sim.comm, sim.set.h, sim.model.origin, sim.model.ncell, nbody, extra,
+                       sim.grid, px, py, lx.data(), ly.data()));
   if (iface) PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
   PetscCall(ParticlesCreate(sim.grid, sim.parts));
   PetscFunctionReturn(0);
@@ -278,11 +278,12 @@ PetscErrorCode PartitionJson(Simulation &sim, std::string &json) {
   const Balance &b = sim.balance;
   const char *sep = ",\n    ";
   json = "\"partition\": {\n    \"processes\": [" + std::to_string(px) + ", " + std::to_string(py) +
-         "]" + sep + "\"origin\": [" + json_num(sim.origin[0]) + ", " + json_num(sim.origin[1]) +
-         "]" + sep + "\"nodes_x\": " + json_array(std::vector<PetscInt>(lx, lx + px)) + sep +
+         "]" + sep + "\"origin\": [" + json_num(sim.model.origin[0]) + ", " +
+         json_num(sim.model.origin[1]) + "]" + sep +
+         "\"nodes_x\": " + json_array(std::vector<PetscInt>(lx, lx + px)) + sep +
          "\"nodes_y\": " + json_array(std::vector<PetscInt>(ly, ly + py)) + sep +
-         "\"cell_bounds_x\": " + json_array(CellBounds(lx, px, sim.ncell[0])) + sep +
-         "\"cell_bounds_y\": " + json_array(CellBounds(ly, py, sim.ncell[1])) + sep +
+         "\"cell_bounds_x\": " + json_array(CellBounds(lx, px, sim.model.ncell[0])) + sep +
+         "\"cell_bounds_y\": " + json_array(CellBounds(ly, py, sim.model.ncell[1])) + sep +
          "\"particles_per_rank\": " + json_array(counts) + sep + json_kv("imbalance", imbalance) +
          "\n  },\n  \"balance\": {\n    \"mode\": \"" + BalanceModeNames[(int)b.mode] + "\"" + sep +
          json_kv("gain", b.gain) + sep + json_kv("imbalance_before", b.before) + sep +

@@ -14,23 +14,24 @@ PetscErrorCode GeometryCheck(Simulation &sim) {
                  "-solver %s is not supported with -geometry axisymmetric (use -solver "
                  "relaxation)",
                  sim.set.solver.c_str());
-  PmpmCheckInput(sim.chain_specs.empty(), sim.comm, PETSC_ERR_SUP,
+  PmpmCheckInput(sim.model.chain_specs.empty(), sim.comm, PETSC_ERR_SUP,
                  "-geometry axisymmetric does not support membrane chains (scene %s has %d; use "
                  "-geometry plane_strain)",
-                 sim.set.scene.c_str(), static_cast<int>(sim.chain_specs.size()));
+                 sim.set.scene.c_str(), static_cast<int>(sim.model.chain_specs.size()));
   PmpmCheckInput(!sim.set.fbar, sim.comm, PETSC_ERR_SUP,
                  "-fbar is not supported with -geometry axisymmetric (use -fbar 0)");
-  PmpmCheckInput(sim.origin[0] >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+  PmpmCheckInput(sim.model.origin[0] >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                  "-geometry axisymmetric needs the grid at r = x >= 0: scene %s's box starts at "
                  "x = %g m (use -geometry plane_strain)",
-                 sim.set.scene.c_str(), sim.origin[0]);
-  PmpmCheckInput(sim.origin[0] > 0 ||
-                     (sim.face_traction[XMIN][0] == 0 && sim.face_traction[XMIN][1] == 0),
+                 sim.set.scene.c_str(), sim.model.origin[0]);
+  PmpmCheckInput(sim.model.origin[0] > 0 || (sim.model.face_traction[XMIN][0] == 0 &&
+                                             sim.model.face_traction[XMIN][1] == 0),
                  sim.comm, PETSC_ERR_ARG_INCOMP,
                  "-bc_xmin_traction acts on the axis r = 0 under -geometry axisymmetric: remove "
                  "it (the axis takes no load)");
   // the axis is a line of symmetry: v_r = 0 on its nodes
-  if (sim.origin[0] == 0 && sim.face[XMIN] == FaceBC::Free) sim.face[XMIN] = FaceBC::Roller;
+  if (sim.model.origin[0] == 0 && sim.model.face[XMIN] == FaceBC::Free)
+    sim.model.face[XMIN] = FaceBC::Roller;
   sim.grid.axisymmetric = true;
   PetscFunctionReturn(0);
 }

@@ -143,7 +143,7 @@ double GridBytesPerNode(int nd, bool iface) {
 
 PetscErrorCode CheckMemoryGrid(Simulation &sim, const MemoryCheck &m, int nd, bool iface) {
   PetscFunctionBeginUser;
-  const double nodes = (double)(sim.ncell[0] + 1) * (double)(sim.ncell[1] + 1);
+  const double nodes = (double)(sim.model.ncell[0] + 1) * (double)(sim.model.ncell[1] + 1);
   PetscCall(CompareWithNodes(
       sim, m, kRankBaseBytes + nodes / sim.size * GridBytesPerNode(nd, iface), "the grid alone"));
   PetscFunctionReturn(0);
@@ -168,7 +168,7 @@ PetscErrorCode CheckProcessGrid(Simulation &sim) {
     PetscCall(PetscOptionsGetInt(nullptr, nullptr, names[d], &np[d], &set[d]));
     if (!set[d]) continue;
     // the stencil width, 2: a rank needs at least two node columns (rows)
-    const PetscInt nodes = sim.ncell[d] + 1, most = nodes / 2;
+    const PetscInt nodes = sim.model.ncell[d] + 1, most = nodes / 2;
     PetscCheck(np[d] >= 1 && np[d] <= most, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "%s %" PetscInt_FMT " must be in 1..%" PetscInt_FMT ": the grid has %" PetscInt_FMT
                " nodes in %c and each rank needs at least 2",
@@ -182,7 +182,7 @@ PetscErrorCode CheckProcessGrid(Simulation &sim) {
              np[0], np[1], sim.size);
   for (int d = 0; d < DIM; ++d) // the other direction then takes the remaining ranks
     if (set[d] && !set[1 - d]) {
-      const PetscInt other = sim.size / np[d], nodes = sim.ncell[1 - d] + 1;
+      const PetscInt other = sim.size / np[d], nodes = sim.model.ncell[1 - d] + 1;
       PetscCheck(other <= nodes / 2, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                  "%s %" PetscInt_FMT " leaves %" PetscInt_FMT " ranks in %c, where the grid has "
                  "%" PetscInt_FMT " nodes and each rank needs at least 2",

@@ -333,23 +333,23 @@ PetscErrorCode BoundaryFromOptions(Simulation &sim) {
     snprintf(opt, sizeof(opt), "-%s", kFaceNames[f]);
     snprintf(topt, sizeof(topt), "-%s_traction", kFaceNames[f]);
     PetscCall(PmpmOptionsEnum(opt, "Face condition: free, roller (normal velocity 0), fixed",
-                              nullptr, FaceBCNames, (PetscEnum)sim.face[f],
-                              (PetscEnum *)&sim.face[f], nullptr));
+                              nullptr, FaceBCNames, (PetscEnum)sim.model.face[f],
+                              (PetscEnum *)&sim.model.face[f], nullptr));
     snprintf(help, sizeof(help),
              "Traction tx,ty (Pa) on the body's outermost particles toward the %s face "
              "(dead load, ramped with the loads; the face must be free)",
              kFaceNames[f]);
     PetscInt n = DIM;
     PetscBool set = PETSC_FALSE;
-    PetscCall(PmpmOptionsRealArray(topt, help, nullptr, sim.face_traction[f], &n, &set));
+    PetscCall(PmpmOptionsRealArray(topt, help, nullptr, sim.model.face_traction[f], &n, &set));
     PmpmCheckInput(!set || n == DIM, sim.comm, PETSC_ERR_USER_INPUT,
                    "-bc_%s_traction needs %d components, got %" PetscInt_FMT, kFaceNames[f], DIM,
                    n);
   }
   PetscOptionsEnd();
   for (int f = 0; f < 2 * DIM; ++f)
-    PmpmCheckInput(sim.face[f] == FaceBC::Free ||
-                       (sim.face_traction[f][0] == 0 && sim.face_traction[f][1] == 0),
+    PmpmCheckInput(sim.model.face[f] == FaceBC::Free ||
+                       (sim.model.face_traction[f][0] == 0 && sim.model.face_traction[f][1] == 0),
                    sim.comm, PETSC_ERR_ARG_INCOMP,
                    "-bc_%s_traction needs -bc_%s free (a held face takes no traction)",
                    kFaceNames[f], kFaceNames[f]);
@@ -361,7 +361,7 @@ PetscErrorCode BoundaryFromOptions(Simulation &sim) {
 PetscErrorCode ApplyFaceTractions(Simulation &sim, ParticleList &init) {
   PetscFunctionBeginUser;
   for (int f = 0; f < 2 * DIM; ++f) {
-    const double *t = sim.face_traction[f];
+    const double *t = sim.model.face_traction[f];
     if (t[0] == 0 && t[1] == 0) continue;
     const int d = f / 2, o = 1 - d;
     const double sgn = f % 2 ? 1.0 : -1.0; // outward along d
@@ -402,15 +402,15 @@ PetscErrorCode BuildLoadTable(Simulation &sim, ParticleList &init) {
   for (size_t k = 0; k < nl; ++k) order[k] = k;
   std::sort(order.begin(), order.end(),
             [&](size_t a, size_t b) { return all[a * W] < all[b * W]; });
-  sim.loads.resize(nl);
+  sim.model.loads.resize(nl);
   std::vector<PetscInt> pids(nl);
   for (size_t k = 0; k < nl; ++k) {
     const double *r = &all[order[k] * W];
     pids[k] = static_cast<PetscInt>(r[0]);
     for (int d = 0; d < DIM; ++d) {
-      sim.loads[k].traction[d] = r[1 + d];
-      sim.loads[k].tface[d] = r[1 + DIM + d];
-      sim.loads[k].lp[d] = r[1 + 2 * DIM + d];
+      sim.model.loads[k].traction[d] = r[1 + d];
+      sim.model.loads[k].tface[d] = r[1 + DIM + d];
+      sim.model.loads[k].lp[d] = r[1 + 2 * DIM + d];
     }
   }
   for (auto &q : init)
@@ -474,7 +474,7 @@ PetscErrorCode CheckFbarDilatancy(const Simulation &sim) {
   PetscFunctionBeginUser;
   // F-bar with the particles' own pressures is unstable under dilatant flow (the c-phi footing
   // heaves and flows at 0.8 of its capacity; README, "Anti-locking"): refused, not run.
-  for (auto &m : sim.mats)
+  for (auto &m : sim.model.mats)
     PmpmCheckInput(
         !(sim.set.fbar && sim.set.fbar_pressure == FbarPressure::Particle && m.model->dilatant()),
         sim.comm, PETSC_ERR_USER_INPUT,
@@ -491,7 +491,7 @@ PetscErrorCode SetInertia(Simulation &sim, double *cmax) {
   // Inertia: either the given densities, or one wave speed for all materials (the fastest
   // physical one), which equalises the relaxation rate of stiff and soft layers. Loads come from
   // gamma only, so the equilibrium is unchanged.
-  for (auto &m : sim.mats) {
+  for (auto &m : sim.model.mats) {
     if (sim.set.inertia == InertiaScaling::None) {
       PmpmCheckInput(m.density > 0, sim.comm, PETSC_ERR_USER_INPUT,
                      "-mat_%s_density is required (> 0) with -inertia_scaling none",
@@ -510,12 +510,12 @@ PetscErrorCode SetInertia(Simulation &sim, double *cmax) {
     *cmax = std::fmax(*cmax, c);
   }
   sim.wave_modulus.clear();
-  for (auto &m : sim.mats) {
+  for (auto &m : sim.model.mats) {
     if (sim.set.inertia == InertiaScaling::WaveSpeed)
       m.density = m.model->wave_modulus() / (*cmax * *cmax);
     sim.wave_modulus.push_back(m.model->wave_modulus());
   }
-  sim.mat_idx.assign(sim.mats.size(), {});
+  sim.mat_idx.assign(sim.model.mats.size(), {});
   PetscFunctionReturn(0);
 }
 
@@ -529,36 +529,39 @@ PetscErrorCode InterfaceFromOptions(Simulation &sim, PetscBool *type_set) {
                             "bonded (one velocity field), paper (Coulomb friction-slip of "
                             "section 3.2), contact (Bardenhagen multi-velocity friction); "
                             "for a chain, the default of -chain_<name>_interface (contact)",
-                            nullptr, InterfaceTypeNames, (PetscEnum)sim.iface.type,
-                            (PetscEnum *)&sim.iface.type, type_set));
+                            nullptr, InterfaceTypeNames, (PetscEnum)sim.model.iface.type,
+                            (PetscEnum *)&sim.model.iface.type, type_set));
   // each type's own normals unless asked otherwise: the paper's cells, Bardenhagen's gradient
-  sim.iface.normals = sim.iface.type == InterfaceType::Contact ? InterfaceNormals::Particles
-                                                               : InterfaceNormals::Cells;
+  sim.model.iface.normals = sim.model.iface.type == InterfaceType::Contact
+                                ? InterfaceNormals::Particles
+                                : InterfaceNormals::Cells;
   PetscCall(PmpmOptionsEnum("-normals",
                             "cells (the paper's central differences of cell-average colour; "
                             "default of paper) or particles (sum of V c grad S over body 1; "
                             "default of contact)",
-                            nullptr, InterfaceNormalsNames, (PetscEnum)sim.iface.normals,
-                            (PetscEnum *)&sim.iface.normals, nullptr));
+                            nullptr, InterfaceNormalsNames, (PetscEnum)sim.model.iface.normals,
+                            (PetscEnum *)&sim.model.iface.normals, nullptr));
   PetscCall(PmpmOptionsReal("-mu_top", "Friction coefficient on the body's upper face, >= 0",
-                            nullptr, sim.iface.mu_top, &sim.iface.mu_top, nullptr));
+                            nullptr, sim.model.iface.mu_top, &sim.model.iface.mu_top, nullptr));
   PetscCall(PmpmOptionsReal("-mu_bottom", "Friction coefficient on the body's lower face, >= 0",
-                            nullptr, sim.iface.mu_bottom, &sim.iface.mu_bottom, nullptr));
+                            nullptr, sim.model.iface.mu_bottom, &sim.model.iface.mu_bottom,
+                            nullptr));
   PetscCall(PmpmOptionsReal("-tail_share",
                             "Below this share of a node's mass a body takes the common "
                             "acceleration there and keeps its relative velocity, 0 <= s < 0.5",
-                            nullptr, sim.iface.tail_share, &sim.iface.tail_share, nullptr));
+                            nullptr, sim.model.iface.tail_share, &sim.model.iface.tail_share,
+                            nullptr));
   PetscOptionsEnd();
-  PetscCheck(sim.iface.tail_share >= 0 && sim.iface.tail_share < 0.5, sim.comm,
+  PetscCheck(sim.model.iface.tail_share >= 0 && sim.model.iface.tail_share < 0.5, sim.comm,
              PETSC_ERR_ARG_OUTOFRANGE, "-interface_tail_share must be in [0, 0.5) (got %g)",
-             sim.iface.tail_share);
-  PetscCheck(sim.iface.mu_top >= 0 && sim.iface.mu_bottom >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-interface_mu_top and -interface_mu_bottom must be >= 0");
-  PetscCheck(!(sim.set.musl && sim.iface.type != InterfaceType::Bonded), sim.comm, PETSC_ERR_SUP,
-             "-musl is not supported with -interface_type %s (use USL: -musl 0)",
-             InterfaceTypeNames[(int)sim.iface.type]);
-  for (int d = 0; d < DIM; ++d) sim.iface.up[d] = -sim.set.gdir[d];
-  for (int f = 0; f < 2 * DIM; ++f) sim.iface.face[f] = sim.face[f];
+             sim.model.iface.tail_share);
+  PetscCheck(sim.model.iface.mu_top >= 0 && sim.model.iface.mu_bottom >= 0, sim.comm,
+             PETSC_ERR_ARG_OUTOFRANGE, "-interface_mu_top and -interface_mu_bottom must be >= 0");
+  PetscCheck(!(sim.set.musl && sim.model.iface.type != InterfaceType::Bonded), sim.comm,
+             PETSC_ERR_SUP, "-musl is not supported with -interface_type %s (use USL: -musl 0)",
+             InterfaceTypeNames[(int)sim.model.iface.type]);
+  for (int d = 0; d < DIM; ++d) sim.model.iface.up[d] = -sim.set.gdir[d];
+  for (int f = 0; f < 2 * DIM; ++f) sim.model.iface.face[f] = sim.model.face[f];
   PetscFunctionReturn(0);
 }
 
@@ -588,8 +591,8 @@ PetscErrorCode ChainsFromOptions(Simulation &sim, PetscBool help, PetscBool type
                             "A sheet with less than this share of a node's mass and no body on "
                             "one side of it there (or only bodies below -interface_tail_share) "
                             "moves with the bodies at the node, 0 <= s < 0.5",
-                            nullptr, sim.contact.chain_tail_share, &sim.contact.chain_tail_share,
-                            nullptr));
+                            nullptr, sim.model.contact.chain_tail_share,
+                            &sim.model.contact.chain_tail_share, nullptr));
   PetscCall(PmpmOptionsReal("-chain_pic",
                             "PIC fraction of the chains' point velocity update, 0..1 (default: "
                             "-pic)",
@@ -598,13 +601,13 @@ PetscErrorCode ChainsFromOptions(Simulation &sim, PetscBool help, PetscBool type
   if (sim.set.chain_pic < 0) sim.set.chain_pic = sim.set.pic;
   PetscCheck(sim.set.chain_pic <= 1, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-chain_pic must be in [0, 1] (got %g)", sim.set.chain_pic);
-  PetscCheck(sim.contact.chain_tail_share >= 0 && sim.contact.chain_tail_share < 0.5, sim.comm,
-             PETSC_ERR_ARG_OUTOFRANGE, "-chain_tail_share must be in [0, 0.5) (got %g)",
-             sim.contact.chain_tail_share);
-  PetscCheck(sim.chain_spacing >= 0.05 && sim.chain_spacing <= 1, sim.comm,
+  PetscCheck(sim.model.contact.chain_tail_share >= 0 && sim.model.contact.chain_tail_share < 0.5,
+             sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-chain_tail_share must be in [0, 0.5) (got %g)",
+             sim.model.contact.chain_tail_share);
+  PetscCheck(sim.model.chain_spacing >= 0.05 && sim.model.chain_spacing <= 1, sim.comm,
              PETSC_ERR_ARG_OUTOFRANGE, "-chain_spacing must be in [0.05, 1] cells (got %g)",
-             sim.chain_spacing);
-  const int nchain = static_cast<int>(sim.chain_specs.size());
+             sim.model.chain_spacing);
+  const int nchain = static_cast<int>(sim.model.chain_specs.size());
   PetscCheck(nchain <= 3, sim.comm, PETSC_ERR_SUP, "at most 3 chains per scene (got %d)", nchain);
   PetscCheck(!(sim.set.musl && nchain > 0), sim.comm, PETSC_ERR_SUP,
              "-musl is not supported with membrane chains (use USL: -musl 0)");
@@ -615,13 +618,13 @@ PetscErrorCode ChainsFromOptions(Simulation &sim, PetscBool help, PetscBool type
     c.body = 2 * k + 1;
     c.slot = nbody * GridDof::NDOF + k * ChainDof::NDOF;
     // faces default to the -interface_* options; a chain is in contact unless told otherwise
-    const FaceType ft = type_set ? static_cast<FaceType>(sim.iface.type) : FaceType::Contact;
+    const FaceType ft = type_set ? static_cast<FaceType>(sim.model.iface.type) : FaceType::Contact;
     c.top.type = c.bottom.type = ft;
-    c.top.mu = sim.iface.mu_top;
-    c.bottom.mu = sim.iface.mu_bottom;
+    c.top.mu = sim.model.iface.mu_top;
+    c.bottom.mu = sim.model.iface.mu_bottom;
     // -help: a chain's unchecked defaults may stop it; its options are listed up to there
     const PetscErrorCode chain_err =
-        ChainCreate(sim.comm, sim.chain_specs[k], sim.chain_spacing * sim.set.h, c);
+        ChainCreate(sim.comm, sim.model.chain_specs[k], sim.model.chain_spacing * sim.set.h, c);
     if (help && chain_err) continue;
     PetscCall(chain_err);
     // inertia: the sheet's axial wave no faster than the continuum's (its load is unchanged)
@@ -629,13 +632,13 @@ PetscErrorCode ChainsFromOptions(Simulation &sim, PetscBool help, PetscBool type
     c.strain_projection = strain_projection;
     c.grid_h = sim.set.h;
     for (int d = 0; d < DIM; ++d) {
-      c.grid_origin[d] = sim.origin[d];
-      c.grid_ncell[d] = sim.ncell[d];
+      c.grid_origin[d] = sim.model.origin[d];
+      c.grid_ncell[d] = sim.model.ncell[d];
     }
     chain_update_tension(c);
   }
-  sim.contact.tail_share = sim.iface.tail_share;
-  for (int f = 0; f < 2 * DIM; ++f) sim.contact.face[f] = sim.face[f];
+  sim.model.contact.tail_share = sim.model.iface.tail_share;
+  for (int f = 0; f < 2 * DIM; ++f) sim.model.contact.face[f] = sim.model.face[f];
   PetscFunctionReturn(0);
 }
 
@@ -643,11 +646,11 @@ PetscErrorCode ChainsFromOptions(Simulation &sim, PetscBool help, PetscBool type
 // tractions, weights, bodies and loads (not under -help).
 PetscErrorCode GridAndParticles(Simulation &sim, const MemoryCheck &mem, int nbody, int nchain) {
   PetscFunctionBeginUser;
-  const bool iface = sim.iface.type != InterfaceType::Bonded && nchain == 0;
+  const bool iface = sim.model.iface.type != InterfaceType::Bonded && nchain == 0;
   PetscCall(CheckProcessGrid(sim));
   PetscCall(CheckMemoryGrid(sim, mem, nbody * GridDof::NDOF + nchain * ChainDof::NDOF, iface));
-  PetscCall(GridCreate(sim.comm, sim.set.h, sim.origin, sim.ncell, nbody, nchain * ChainDof::NDOF,
-                       sim.grid));
+  PetscCall(GridCreate(sim.comm, sim.set.h, sim.model.origin, sim.model.ncell, nbody,
+                       nchain * ChainDof::NDOF, sim.grid));
   if (iface) PetscCall(InterfaceGridCreate(sim.grid, sim.iface_grid));
   sim.parts.affine = sim.set.transfer == Transfer::Apic;
   PetscCall(ParticlesCreate(sim.grid, sim.parts));
@@ -694,13 +697,13 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   if (!sim.scene) PetscCall(ListScenesAndLaws(sim.comm)); // -help without a scene
   PetscOptionsBegin(sim.comm, nullptr, "Membrane chains", nullptr);
   PetscCall(PmpmOptionsReal("-chain_spacing", "Chain point spacing in cells, 0.05..1", nullptr,
-                            sim.chain_spacing, &sim.chain_spacing, nullptr));
+                            sim.model.chain_spacing, &sim.model.chain_spacing, nullptr));
   PetscOptionsEnd();
   if (sim.scene) PetscCall(sim.scene->setup(sim));
   PetscCall(BoundaryFromOptions(sim));
   PetscCall(GeometryCheck(sim));
-  PetscCheck(!sim.mats.empty() || !sim.chain_specs.empty() || help, sim.comm, PETSC_ERR_PLIB,
-             "scene defined no material");
+  PetscCheck(!sim.model.mats.empty() || !sim.model.chain_specs.empty() || help, sim.comm,
+             PETSC_ERR_PLIB, "scene defined no material");
   PetscCall(CheckFbarDilatancy(sim));
 
   double cmax = 0; // the fastest material's wave speed
@@ -717,9 +720,10 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   if (help) { // -help: the grid's and Newton's options need a grid, whatever box the scene's
     // (unchecked) defaults give; no particles
     for (int d = 0; d < DIM; ++d)
-      sim.ncell[d] = std::min<PetscInt>(std::max<PetscInt>(sim.ncell[d], 4 * sim.size), 256);
-    PetscCall(GridCreate(sim.comm, sim.set.h > 0 ? sim.set.h : 1.0, sim.origin, sim.ncell, nbody,
-                         nchain * ChainDof::NDOF, sim.grid));
+      sim.model.ncell[d] =
+          std::min<PetscInt>(std::max<PetscInt>(sim.model.ncell[d], 4 * sim.size), 256);
+    PetscCall(GridCreate(sim.comm, sim.set.h > 0 ? sim.set.h : 1.0, sim.model.origin,
+                         sim.model.ncell, nbody, nchain * ChainDof::NDOF, sim.grid));
     PetscCall(SolverSetup(sim, true));
     PetscFunctionReturn(0);
   }

@@ -63,15 +63,15 @@ public:
         "-bar_traction must be non-zero (or give -bar_initial_velocity for a vibrating bar)");
     PmpmCheckInput(v0_ == 0 || t_ == 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-bar_initial_velocity needs -bar_traction 0 (free vibration)");
-    sim.origin[0] = sim.origin[1] = 0;
-    sim.ncell[0] = nbox;
-    sim.ncell[1] = top_roller_ ? nB : nB + 1;
-    sim.face[XMIN] = FaceBC::Roller;
-    sim.face[YMIN] = FaceBC::Roller;
-    if (top_roller_) sim.face[YMAX] = FaceBC::Roller;
-    sim.face_traction[XMAX][0] = t_; // on the bar's end, the body's face toward x max
-    sim.mats.resize(1);
-    PetscCall(MaterialFromOptions(sim.comm, "bar", sim.mats[0]));
+    sim.model.origin[0] = sim.model.origin[1] = 0;
+    sim.model.ncell[0] = nbox;
+    sim.model.ncell[1] = top_roller_ ? nB : nB + 1;
+    sim.model.face[XMIN] = FaceBC::Roller;
+    sim.model.face[YMIN] = FaceBC::Roller;
+    if (top_roller_) sim.model.face[YMAX] = FaceBC::Roller;
+    sim.model.face_traction[XMAX][0] = t_; // on the bar's end, the body's face toward x max
+    sim.model.mats.resize(1);
+    PetscCall(MaterialFromOptions(sim.comm, "bar", sim.model.mats[0]));
     PetscFunctionReturn(0);
   }
 
@@ -104,14 +104,14 @@ public:
     double s[3] = {0, 0, 0}; // mass, x-momentum, kinetic + elastic energy
     PetscFunctionBeginUser;
     if (v0_ == 0) PetscFunctionReturn(0);
-    const ElasticConstants &c = sim.mats[0].el;
+    const ElasticConstants &c = sim.model.mats[0].el;
     PetscCall(ParticlesGetView(sim.parts, P));
     for (PetscInt p = 0; p < P.n; ++p) {
       double *v = P.v + p * DIM;
       double D[DIM] = {0, 0}, *B = P.B ? P.B + p * DIM * DIM : nullptr;
       if (B)
         affine_inertia(sim.set.shape, P.x + p * DIM, P.lp + p * DIM, P.F + p * DIM * DIM,
-                       sim.origin, sim.set.h, D);
+                       sim.model.origin, sim.set.h, D);
       if (sim.run.step == 0) {
         v[0] = v0_ * std::sin(beta() * P.x0[p * DIM]);
         if (B) B[0] = v0_ * beta() * std::cos(beta() * P.x0[p * DIM]) * D[0]; // C D, C = dv/dx
@@ -136,7 +136,7 @@ public:
   // Period from the zero crossings of the centre-of-mass velocity; energy drift.
   PetscErrorCode vibration_results(Simulation &sim, std::string &json) {
     PetscFunctionBeginUser;
-    const MaterialEntry &m = sim.mats[0];
+    const MaterialEntry &m = sim.model.mats[0];
     const double omega = beta() * std::sqrt(m.el.E / m.density), T_exact = 2 * M_PI / omega;
     std::vector<double> tc; // crossing times (linear interpolation)
     for (size_t k = 1; k < hist_v_.size(); ++k) {
@@ -182,7 +182,7 @@ public:
       PetscCall(vibration_results(sim, json));
       PetscFunctionReturn(0);
     }
-    const ElasticConstants &c = sim.mats[0].el;
+    const ElasticConstants &c = sim.model.mats[0].el;
     // [sum ux at tip, sum x0 at tip, count at tip]; and max stress error
     double s[3] = {0, 0, 0}, err = 0;
     PetscCall(ParticlesGetView(sim.parts, P));

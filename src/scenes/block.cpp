@@ -106,8 +106,8 @@ public:
                               nullptr, period_, &period_, nullptr));
     PetscOptionsEnd();
     PetscInt nx, ny;
-    PetscCall(CheckCells(sim.comm, "-block_box (x)", box_[0], sim.set.h, &sim.ncell[0]));
-    PetscCall(CheckCells(sim.comm, "-block_box (y)", box_[1], sim.set.h, &sim.ncell[1]));
+    PetscCall(CheckCells(sim.comm, "-block_box (x)", box_[0], sim.set.h, &sim.model.ncell[0]));
+    PetscCall(CheckCells(sim.comm, "-block_box (y)", box_[1], sim.set.h, &sim.model.ncell[1]));
     PetscCall(CheckCells(sim.comm, "-block_length", Lb_, sim.set.h, &nx));
     PetscCall(CheckCells(sim.comm, "-block_height", Hb_, sim.set.h, &ny));
     if (xc_[0] < 0) xc_[0] = 0.5 * box_[0];
@@ -121,16 +121,16 @@ public:
                        xc_[1] - 0.5 * Hb_ >= h && xc_[1] + 0.5 * Hb_ <= box_[1] - h,
                    sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-block_centre: the block must start at least one cell inside -block_box");
-    sim.origin[0] = sim.origin[1] = 0;
-    for (int f = 0; f < 2 * DIM; ++f) sim.face[f] = FaceBC::Free;
+    sim.model.origin[0] = sim.model.origin[1] = 0;
+    for (int f = 0; f < 2 * DIM; ++f) sim.model.face[f] = FaceBC::Free;
     if (period_ > 0) { // the driving force acts along v0
       const double v = std::hypot(v0_[0], v0_[1]);
       for (int d = 0; d < DIM; ++d) sim.set.gdir[d] = v0_[d] / v;
     }
     sim.set.ramp_steps = 0;
-    sim.mats.resize(1);
-    PetscCall(MaterialFromOptions(sim.comm, "block", sim.mats[0]));
-    PmpmCheckInput(sim.mats[0].gamma == 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+    sim.model.mats.resize(1);
+    PetscCall(MaterialFromOptions(sim.comm, "block", sim.model.mats[0]));
+    PmpmCheckInput(sim.model.mats[0].gamma == 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-mat_block_gamma must be 0: the block floats in an empty box (no gravity)");
     PmpmCheckInput(sim.set.dynamic, sim.comm, PETSC_ERR_USER_INPUT,
                    "the block scene is undamped dynamics: add -dynamic");
@@ -215,7 +215,7 @@ public:
         P.v[p * DIM + 1] = v0_[1] + omega_ * (x[0] - xc_[0]);
         if (P.B) { // B = C D for the rigid rotation's gradient C
           double D[DIM], *B = P.B + p * DIM * DIM;
-          affine_inertia(sim.set.shape, x, P.lp + p * DIM, P.F + p * DIM * DIM, sim.origin,
+          affine_inertia(sim.set.shape, x, P.lp + p * DIM, P.F + p * DIM * DIM, sim.model.origin,
                          sim.set.h, D);
           B[0] = B[3] = 0;
           B[1] = -omega_ * D[1];
@@ -225,7 +225,7 @@ public:
       PetscCall(ParticlesRestoreView(sim.parts, P));
       double lo = sim.grid.cell_lo[0] > 0 ? (double)sim.grid.cell_lo[0] : 1e300;
       PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_DOUBLE, MPI_MIN, sim.comm));
-      split_ = lo < 1e300 ? sim.origin[0] + lo * sim.set.h : -1;
+      split_ = lo < 1e300 ? sim.model.origin[0] + lo * sim.set.h : -1;
       PetscCall(sums(sim, s));
       mass0_ = s[0];
       n0_ = s[1];

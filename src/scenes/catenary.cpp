@@ -83,7 +83,7 @@ public:
       ps.line = {0, 0, span_, 0};
       const PetscErrorCode err = ChainCreate(sim.comm, ps, span_, probe);
       if (err && ListingHelp()) { // -help: the sheet's unchecked defaults size no box
-        sim.chain_specs.push_back(ps);
+        sim.model.chain_specs.push_back(ps);
         PetscFunctionReturn(0);
       }
       PetscCall(err);
@@ -104,10 +104,10 @@ public:
       if (drop_ <= 0) drop_ = 1.2 * ex_.sag + 2 * h; // below the first chain's sag
       depth = std::fmax(depth, drop_ + ex2_.sag);
     }
-    sim.ncell[0] = static_cast<PetscInt>(std::ceil(span_ / h - 1e-9)) + 4;
-    sim.ncell[1] = static_cast<PetscInt>(std::ceil(1.2 * depth / h)) + 5;
-    sim.origin[0] = -2 * h;
-    sim.origin[1] = -(sim.ncell[1] - 3) * h;
+    sim.model.ncell[0] = static_cast<PetscInt>(std::ceil(span_ / h - 1e-9)) + 4;
+    sim.model.ncell[1] = static_cast<PetscInt>(std::ceil(1.2 * depth / h)) + 5;
+    sim.model.origin[0] = -2 * h;
+    sim.model.origin[1] = -(sim.model.ncell[1] - 3) * h;
     y0_ = 0.5 * h + off_[1];
     cs.line = {off_[0], y0_, off_[0] + span_, y0_};
     PmpmCheckInput(std::fabs(off_[0]) < h && std::fabs(off_[1]) < h, sim.comm,
@@ -118,10 +118,10 @@ public:
       c2.name = c2.material = "liner";
       y2_ = y0_ - drop_;
       c2.line = {off_[0], y2_, off_[0] + span_, y2_};
-      sim.chain_specs.push_back(c2);
+      sim.model.chain_specs.push_back(c2);
     }
-    sim.chain_specs.push_back(cs);
-    for (int f = 0; f < 2 * DIM; ++f) sim.face[f] = FaceBC::Free;
+    sim.model.chain_specs.push_back(cs);
+    for (int f = 0; f < 2 * DIM; ++f) sim.model.face[f] = FaceBC::Free;
     PetscFunctionReturn(0);
   }
 

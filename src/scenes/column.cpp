@@ -61,14 +61,14 @@ public:
     PetscInt nH, nW;
     PetscCall(CheckCells(sim.comm, "-column_height", H_, sim.set.h, &nH));
     PetscCall(CheckCells(sim.comm, "-column_width", W_, sim.set.h, &nW));
-    sim.origin[0] = sim.origin[1] = 0;
-    sim.ncell[0] = nW;
-    sim.ncell[1] = nH + 2;
-    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
-    sim.face[YMIN] = FaceBC::Fixed;
-    sim.mats.resize(1);
-    PetscCall(MaterialFromOptions(sim.comm, "column", sim.mats[0]));
-    PmpmCheckInput(sim.mats[0].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+    sim.model.origin[0] = sim.model.origin[1] = 0;
+    sim.model.ncell[0] = nW;
+    sim.model.ncell[1] = nH + 2;
+    sim.model.face[XMIN] = sim.model.face[XMAX] = FaceBC::Roller;
+    sim.model.face[YMIN] = FaceBC::Fixed;
+    sim.model.mats.resize(1);
+    PetscCall(MaterialFromOptions(sim.comm, "column", sim.model.mats[0]));
+    PmpmCheckInput(sim.model.mats[0].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-mat_column_gamma must be > 0 for a column under self-weight");
     PetscFunctionReturn(0);
   }
@@ -83,9 +83,9 @@ public:
 
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     PetscFunctionBeginUser;
-    const MaterialEntry &m = sim.mats[0];
+    const MaterialEntry &m = sim.model.mats[0];
     gamma_ = m.gamma;
-    q_ = -sim.face_traction[YMAX][1];
+    q_ = -sim.model.face_traction[YMAX][1];
     tabulate(m);
     VerticalComparison c;
     PetscCall(CompareVertical(

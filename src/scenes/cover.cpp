@@ -264,14 +264,14 @@ class CoverScene final : public Scene {
     PetscCall(PmpmOptionsEnum("-shrink_mode",
                               "Shrinkage eigenstrain: vertical (e*_yy = -e_v) or isotropic "
                               "(-e_v/3 on xx, yy, zz)",
-                              nullptr, ShrinkModeNames, (PetscEnum)sim.shrink.mode,
-                              (PetscEnum *)&sim.shrink.mode, nullptr));
+                              nullptr, ShrinkModeNames, (PetscEnum)sim.model.shrink.mode,
+                              (PetscEnum *)&sim.model.shrink.mode, nullptr));
     PetscCall(PmpmOptionsRealArray("-shrink_x", "Degrading zone x_lo,x_hi (m; default all)",
                                    nullptr, raw.zx, &raw.nz, &raw.zx_set));
     PetscCall(PmpmOptionsReal("-shrink_taper",
                               "Shrinkage falls linearly to 0 over this distance outside the "
                               "zone (m)",
-                              nullptr, sim.shrink.taper, &sim.shrink.taper, nullptr));
+                              nullptr, sim.model.shrink.taper, &sim.model.shrink.taper, nullptr));
     PetscCall(PmpmOptionsRealArray("-shrink_grade",
                                    "Shrinkage factors at the waste base and top, bottom,top "
                                    "(linear with height; 1,1: uniform)",
@@ -330,13 +330,13 @@ class CoverScene final : public Scene {
     if (raw.zx_set) {
       PmpmCheckInput(raw.nz == 2 && raw.zx[1] > raw.zx[0], sim.comm, PETSC_ERR_USER_INPUT,
                      "-cover_shrink_x needs x_lo,x_hi with x_lo < x_hi");
-      sim.shrink.x_lo = raw.zx[0];
-      sim.shrink.x_hi = raw.zx[1];
+      sim.model.shrink.x_lo = raw.zx[0];
+      sim.model.shrink.x_hi = raw.zx[1];
     }
     PmpmCheckInput(!raw.gr_set || raw.ng == 2, sim.comm, PETSC_ERR_USER_INPUT,
                    "-cover_shrink_grade needs bottom,top");
-    sim.shrink.grade_bottom = raw.gr[0];
-    sim.shrink.grade_top = raw.gr[1];
+    sim.model.shrink.grade_bottom = raw.gr[0];
+    sim.model.shrink.grade_top = raw.gr[1];
     PetscCall(ReadLayers(sim, layer_names));
     PetscCall(ReadMembranes(sim, mem_names));
     PetscCall(ReadZones(sim, zone_names));
@@ -524,9 +524,9 @@ class CoverScene final : public Scene {
                    "-cover_geostatic_paper false (with -chain_<name>_interface bonded), or use "
                    "-solver relaxation",
                    sim.set.solver.c_str());
-    PmpmCheckInput(sim.shrink.taper >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+    PmpmCheckInput(sim.model.shrink.taper >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-cover_shrink_taper must be >= 0");
-    PmpmCheckInput(sim.shrink.grade_bottom >= 0 && sim.shrink.grade_top >= 0, sim.comm,
+    PmpmCheckInput(sim.model.shrink.grade_bottom >= 0 && sim.model.shrink.grade_top >= 0, sim.comm,
                    PETSC_ERR_ARG_OUTOFRANGE, "-cover_shrink_grade factors must be >= 0");
     for (size_t k = 0; k < void_w_.size(); ++k)
       PmpmCheckInput(void_w_[k] > 0 && (k == 0 || void_w_[k] >= void_w_[k - 1]), sim.comm,
@@ -578,11 +578,11 @@ public:
       bands(surf_[2 * k], b);
       top = std::fmax(top, b.back());
     }
-    sim.origin[0] = sim.origin[1] = 0;
-    sim.ncell[0] = nW;
-    sim.ncell[1] = static_cast<PetscInt>(std::ceil(top / sim.set.h - 1e-9)) + 2;
-    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
-    sim.face[YMIN] = FaceBC::Fixed;
+    sim.model.origin[0] = sim.model.origin[1] = 0;
+    sim.model.ncell[0] = nW;
+    sim.model.ncell[1] = static_cast<PetscInt>(std::ceil(top / sim.set.h - 1e-9)) + 2;
+    sim.model.face[XMIN] = sim.model.face[XMAX] = FaceBC::Roller;
+    sim.model.face[YMIN] = FaceBC::Fixed;
     // materials: the waste first, then each distinct layer material
     std::vector<std::string> names = {waste_mat_};
     for (size_t k = 0; k < layers_.size(); ++k) {
@@ -601,11 +601,11 @@ public:
       z.mat = static_cast<int>(it - names.begin());
       if (it == names.end()) names.push_back(z.material);
     }
-    sim.mats.resize(names.size());
+    sim.model.mats.resize(names.size());
     cover_mat_.assign(names.size(), 0);
     waste_mat_of_.assign(names.size(), 0);
     for (size_t m = 0; m < names.size(); ++m)
-      PetscCall(MaterialFromOptions(sim.comm, names[m], sim.mats[m]));
+      PetscCall(MaterialFromOptions(sim.comm, names[m], sim.model.mats[m]));
     for (const Layer &l : layers_) cover_mat_[l.mat] = 1;
     waste_mat_of_[0] = 1;
     for (const Zone &z : zones_) waste_mat_of_[z.mat] = 1;
@@ -614,19 +614,20 @@ public:
         "-cover_waste_material %s is also a cover layer's material: give the waste its own",
         waste_mat_.c_str());
     // degradation: the waste and its zones shrink (rate-form materials only)
-    sim.shrink.degrades.assign(waste_mat_of_.begin(), waste_mat_of_.end());
-    sim.shrink.y_lo = 0;
-    sim.shrink.y_hi = 1e300;
+    sim.model.shrink.degrades.assign(waste_mat_of_.begin(), waste_mat_of_.end());
+    sim.model.shrink.y_lo = 0;
+    sim.model.shrink.y_hi = 1e300;
     if (shrink_total_ > 0) {
       double ytop = 0;
       for (size_t k = 0; k < surf_.size() / 2; ++k) ytop = std::fmax(ytop, surf_[2 * k + 1]);
-      sim.shrink.y_hi = ytop; // grading is linear from the base to the highest waste surface
+      sim.model.shrink.y_hi = ytop; // grading is linear from the base to the highest waste surface
       for (size_t m = 0; m < names.size(); ++m)
-        PmpmCheckInput(!waste_mat_of_[m] || sim.mats[m].model->rate_form(), sim.comm, PETSC_ERR_SUP,
+        PmpmCheckInput(!waste_mat_of_[m] || sim.model.mats[m].model->rate_form(), sim.comm,
+                       PETSC_ERR_SUP,
                        "-cover_shrink_total needs rate-form waste materials (%s), not "
                        "-mat_%s_model %s",
                        MaterialLawList(&MaterialLaw::rate_form).c_str(), names[m].c_str(),
-                       sim.mats[m].model->model());
+                       sim.model.mats[m].model->model());
     }
     // membranes: chains at the base of their layers, ends half a point spacing inside the walls
     for (const Membrane &M : mem_) {
@@ -634,7 +635,7 @@ public:
       cs.name = M.name;
       cs.material = M.material;
       cs.thickness = M.thickness;
-      const double e = 0.5 * sim.chain_spacing * sim.set.h;
+      const double e = 0.5 * sim.model.chain_spacing * sim.set.h;
       cs.line = {e, layer_base(M.layer, e)};
       for (size_t k = 1; k + 1 < surf_.size() / 2; ++k)
         if (surf_[2 * k] > e && surf_[2 * k] < W_ - e) {
@@ -643,11 +644,11 @@ public:
         }
       cs.line.push_back(W_ - e);
       cs.line.push_back(layer_base(M.layer, W_ - e));
-      sim.chain_specs.push_back(cs);
+      sim.model.chain_specs.push_back(cs);
     }
     // particle columns and their ids: column i holds at most R_ rows
     ncol_ = static_cast<PetscInt>(std::llround(W_ / dxp_));
-    R_ = sim.ncell[1] * sim.set.ppc + static_cast<PetscInt>(layers_.size()) + 2;
+    R_ = sim.model.ncell[1] * sim.set.ppc + static_cast<PetscInt>(layers_.size()) + 2;
     surface_pid_.clear();
     for (PetscInt i = 0; i < ncol_; ++i) {
       bands((i + 0.5) * dxp_, b);
@@ -681,8 +682,8 @@ public:
           q.lp[1] = 0.5 * dy;
           q.vol = dxp_ * dy;
           q.mat = mat;
-          q.density = sim.mats[mat].density;
-          q.gamma = sim.mats[mat].gamma;
+          q.density = sim.model.mats[mat].density;
+          q.gamma = sim.model.mats[mat].gamma;
           q.pid = i * R_ + row;
           out.push_back(q);
         }
@@ -729,7 +730,7 @@ public:
       // velocity-based contact then held a gap above (4 m column, e_v = 0.03: settlement 28 %
       // short); in 25 transits the cover follows within 0.2 %
       PetscInt steps = shrink_steps_;
-      if (steps == 0) steps = static_cast<PetscInt>(25 * sim.ncell[1] / sim.set.cfl);
+      if (steps == 0) steps = static_cast<PetscInt>(25 * sim.model.ncell[1] / sim.set.cfl);
       sim.stage_ramp = steps;
       cum_shrink_ += sim.stage_shrink;
       PetscFunctionReturn(0);
@@ -783,7 +784,7 @@ public:
   PetscErrorCode CoverStrains(Simulation &sim, std::vector<double> &layer_tension, double *epmax) {
     ParticleView P;
     PetscFunctionBeginUser;
-    std::vector<double> mx(sim.mats.size() + 1, 0.0);
+    std::vector<double> mx(sim.model.mats.size() + 1, 0.0);
     PetscCall(ParticlesGetView(sim.parts, P));
     for (PetscInt p = 0; p < P.n; ++p) {
       const int m = static_cast<int>(P.mat[p]);
@@ -1080,11 +1081,11 @@ public:
       for (size_t k = M.layer; k < layers_.size(); ++k) {
         const double t = layers_[k].thickness(x, W_);
         H += t;
-        w += t * sim.mats[layers_[k].mat].gamma;
+        w += t * sim.model.mats[layers_[k].mat].gamma;
       }
       gamma = w / H;
     };
-    const MaterialEntry &soil = sim.mats[layers_[M.layer].mat];
+    const MaterialEntry &soil = sim.model.mats[layers_[M.layer].mat];
     double phi = 0, coh = 0;
     if (auto *dp = dynamic_cast<const DruckerPrager *>(soil.model.get())) {
       phi = dp->params().phi_deg;

@@ -58,16 +58,16 @@ public:
     PetscCall(
         CheckCells(sim.comm, "-cylinder_outer_radius - inner_radius", b_ - a_, sim.set.h, &nw));
     PetscCall(CheckCells(sim.comm, "-cylinder_height", H_, sim.set.h, &nH));
-    sim.origin[0] = a_;
-    sim.origin[1] = 0;
-    sim.ncell[0] = nw + 2;
-    sim.ncell[1] = nH;
-    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Free; // r = 0: a roller (GeometryCheck)
-    sim.face[YMIN] = sim.face[YMAX] = FaceBC::Roller;
-    sim.face_traction[XMIN][0] = pi_;  // pushes along +r
-    sim.face_traction[XMAX][0] = -po_; // pushes along -r
-    sim.mats.resize(1);
-    PetscCall(MaterialFromOptions(sim.comm, "cylinder", sim.mats[0]));
+    sim.model.origin[0] = a_;
+    sim.model.origin[1] = 0;
+    sim.model.ncell[0] = nw + 2;
+    sim.model.ncell[1] = nH;
+    sim.model.face[XMIN] = sim.model.face[XMAX] = FaceBC::Free; // r = 0: a roller (GeometryCheck)
+    sim.model.face[YMIN] = sim.model.face[YMAX] = FaceBC::Roller;
+    sim.model.face_traction[XMIN][0] = pi_;  // pushes along +r
+    sim.model.face_traction[XMAX][0] = -po_; // pushes along -r
+    sim.model.mats.resize(1);
+    PetscCall(MaterialFromOptions(sim.comm, "cylinder", sim.model.mats[0]));
     PetscFunctionReturn(0);
   }
 
@@ -82,7 +82,7 @@ public:
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     ParticleView P;
     PetscFunctionBeginUser;
-    const ElasticConstants &el = sim.mats[0].el;
+    const ElasticConstants &el = sim.model.mats[0].el;
     const double A = coef_a(), B = coef_b(), E = el.E, nu = el.nu;
     // sums over the particles (weights V, per radian): err^2 and exact^2 of u_r, sigma_rr,
     // sigma_thth, sigma_zz; then |u_z|^2 V (relative to u_r's norm); then max |err| of u_r and of

@@ -48,7 +48,7 @@ class FootingScene final : public Scene {
   // length (its block's width). Every rank sets the whole table alike.
   PetscErrorCode set_pressure(Simulation &sim, double q) {
     PetscFunctionBeginUser;
-    for (ParticleLoad &L : sim.loads) L.traction[1] = -q * 2.0 * L.lp[0];
+    for (ParticleLoad &L : sim.model.loads) L.traction[1] = -q * 2.0 * L.lp[0];
     PetscFunctionReturn(0);
   }
 
@@ -70,7 +70,7 @@ class FootingScene final : public Scene {
 
   // Friction angle of the Mohr-Coulomb soil the exact solution is for (0 for von Mises).
   double phi_rad(const Simulation &sim) const {
-    if (const auto *dp = dynamic_cast<const DruckerPrager *>(sim.mats[0].model.get()))
+    if (const auto *dp = dynamic_cast<const DruckerPrager *>(sim.model.mats[0].model.get()))
       return dp->params().phi_deg * M_PI / 180.0;
     return 0;
   }
@@ -85,7 +85,7 @@ class FootingScene final : public Scene {
   }
 
   double exact(const Simulation &sim) const {
-    const Material &m = *sim.mats[0].model;
+    const Material &m = *sim.model.mats[0].model;
     if (const auto *vm = dynamic_cast<const VonMises *>(&m))
       return (2.0 + M_PI) * vm->params().sigma_y0 / std::sqrt(3.0);
     if (const auto *dp = dynamic_cast<const DruckerPrager *>(&m)) {
@@ -146,16 +146,16 @@ public:
     PetscCall(CheckCells(sim.comm, "-footing_width / 2", 0.5 * B_, sim.set.h, &nb));
     PetscCall(CheckCells(sim.comm, "-footing_soil_width", W_, sim.set.h, &nw));
     PetscCall(CheckCells(sim.comm, "-footing_soil_depth", D_, sim.set.h, &nd));
-    sim.origin[0] = sim.origin[1] = 0;
-    sim.ncell[0] = nw;
+    sim.model.origin[0] = sim.model.origin[1] = 0;
+    sim.model.ncell[0] = nw;
     // room above the surface for the heave beside a collapsing footing
-    sim.ncell[1] =
+    sim.model.ncell[1] =
         nd + std::max<PetscInt>(2, static_cast<PetscInt>(std::ceil(0.5 * B_ / sim.set.h)));
-    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
-    sim.face[YMIN] = FaceBC::Fixed;
-    sim.mats.resize(1);
-    PetscCall(MaterialFromOptions(sim.comm, "soil", sim.mats[0]));
-    PmpmCheckInput(sim.mats[0].model->plastic(), sim.comm, PETSC_ERR_USER_INPUT,
+    sim.model.face[XMIN] = sim.model.face[XMAX] = FaceBC::Roller;
+    sim.model.face[YMIN] = FaceBC::Fixed;
+    sim.model.mats.resize(1);
+    PetscCall(MaterialFromOptions(sim.comm, "soil", sim.model.mats[0]));
+    PmpmCheckInput(sim.model.mats[0].model->plastic(), sim.comm, PETSC_ERR_USER_INPUT,
                    "-mat_soil_model must be a plastic law (%s): a footing has a bearing "
                    "capacity only in a soil that yields",
                    MaterialLawList(&MaterialLaw::plastic).c_str());

@@ -62,21 +62,21 @@ public:
     PmpmCheckInput(theta_ >= 0 && theta_ <= 80, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-incline_angle must be in [0, 80] degrees (got %g)", theta_);
     PetscInt n;
-    PetscCall(CheckCells(sim.comm, "-incline_base_length", Lbase_, sim.set.h, &sim.ncell[0]));
+    PetscCall(CheckCells(sim.comm, "-incline_base_length", Lbase_, sim.set.h, &sim.model.ncell[0]));
     PetscCall(CheckCells(sim.comm, "-incline_base_height", Hbase_, sim.set.h, &n));
-    PetscCall(CheckCells(sim.comm, "-incline_block_height", Hb_, sim.set.h, &sim.ncell[1]));
-    sim.ncell[1] += n + 2;
+    PetscCall(CheckCells(sim.comm, "-incline_block_height", Hb_, sim.set.h, &sim.model.ncell[1]));
+    sim.model.ncell[1] += n + 2;
     PetscCall(CheckCells(sim.comm, "-incline_block_length", Lb_, sim.set.h, &n));
     PmpmCheckInput(x0_ >= 0 && x0_ + Lb_ <= Lbase_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-incline_block_x: the block must start on the base");
     const double th = theta_ * M_PI / 180;
     sim.set.gdir[0] = std::sin(th);
     sim.set.gdir[1] = -std::cos(th);
-    sim.origin[0] = sim.origin[1] = 0;
-    sim.face[YMIN] = FaceBC::Fixed;
-    sim.mats.resize(2);
-    PetscCall(MaterialFromOptions(sim.comm, "block", sim.mats[0]));
-    PetscCall(MaterialFromOptions(sim.comm, "base", sim.mats[1]));
+    sim.model.origin[0] = sim.model.origin[1] = 0;
+    sim.model.face[YMIN] = FaceBC::Fixed;
+    sim.model.mats.resize(2);
+    PetscCall(MaterialFromOptions(sim.comm, "block", sim.model.mats[0]));
+    PetscCall(MaterialFromOptions(sim.comm, "base", sim.model.mats[1]));
     PmpmCheckInput(sim.set.inertia == InertiaScaling::None, sim.comm, PETSC_ERR_USER_INPUT,
                    "the incline is dynamic: use -inertia_scaling none and give -mat_block_density");
     if (chain_) {
@@ -95,7 +95,7 @@ public:
       cs.thickness = thickness_;
       cs.pin_start = cs.pin_end = pin_;
       cs.line = {h, Hbase_, Lbase_ - h, Hbase_};
-      sim.chain_specs.push_back(cs);
+      sim.model.chain_specs.push_back(cs);
     }
     PetscFunctionReturn(0);
   }
@@ -156,13 +156,13 @@ public:
 
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     PetscFunctionBeginUser;
-    const MaterialEntry &b = sim.mats[0];
+    const MaterialEntry &b = sim.model.mats[0];
     const double g = b.gamma / b.density, th = theta_ * M_PI / 180;
     // with the chain: its upper face (the -interface_* defaults or -chain_membrane_* overrides)
     const Chain *c = sim.chains.empty() ? nullptr : &sim.chains[0];
-    const double mu = c ? c->top.mu : sim.iface.mu_top;
+    const double mu = c ? c->top.mu : sim.model.iface.mu_top;
     const bool bonded =
-        c ? c->top.type == FaceType::Bonded : sim.iface.type == InterfaceType::Bonded;
+        c ? c->top.type == FaceType::Bonded : sim.model.iface.type == InterfaceType::Bonded;
     const bool sticks = bonded || std::tan(th) <= mu;
     const double a_exact = sticks ? 0.0 : g * (std::sin(th) - mu * std::cos(th));
     // least-squares slope of v(t) over the second half of the run

@@ -255,13 +255,14 @@ public:
         "waste",
         D_, Xc_);
     const double top = Hw_ + t_ + Hs_;
-    sim.origin[0] = sim.origin[1] = 0;
-    sim.ncell[0] = nW;
-    sim.ncell[1] = static_cast<PetscInt>(std::ceil(top / sim.set.h - 1e-9)) + 2;
-    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
-    sim.face[YMIN] = FaceBC::Fixed;
-    sim.mats.resize(4);
-    for (int m = 0; m < 4; ++m) PetscCall(MaterialFromOptions(sim.comm, kMatNames[m], sim.mats[m]));
+    sim.model.origin[0] = sim.model.origin[1] = 0;
+    sim.model.ncell[0] = nW;
+    sim.model.ncell[1] = static_cast<PetscInt>(std::ceil(top / sim.set.h - 1e-9)) + 2;
+    sim.model.face[XMIN] = sim.model.face[XMAX] = FaceBC::Roller;
+    sim.model.face[YMIN] = FaceBC::Fixed;
+    sim.model.mats.resize(4);
+    for (int m = 0; m < 4; ++m)
+      PetscCall(MaterialFromOptions(sim.comm, kMatNames[m], sim.model.mats[m]));
     if (chain_) {
       ChainSpec cs;
       cs.name = "membrane";
@@ -269,9 +270,9 @@ public:
       cs.thickness = t_;
       // ends half a point spacing inside the walls, as particle centres are (a point on the
       // wall itself would move with the interior node beside it, and could leave the box)
-      const double e = 0.5 * sim.chain_spacing * sim.set.h;
+      const double e = 0.5 * sim.model.chain_spacing * sim.set.h;
       cs.line = {e, Hw_ + t_, W_ - e, Hw_ + t_};
-      sim.chain_specs.push_back(cs);
+      sim.model.chain_specs.push_back(cs);
     }
     PetscFunctionReturn(0);
   }
@@ -294,7 +295,7 @@ public:
       // at h/2 (the PMPM support spans at most two cells per direction).
       const double dx = sim.set.h / sim.set.ppc, dy = t_ / layers_;
       const PetscInt ncol = static_cast<PetscInt>(std::llround(W_ / dx));
-      const PetscInt base = sim.ncell[0] * sim.ncell[1] * sim.set.ppc * sim.set.ppc;
+      const PetscInt base = sim.model.ncell[0] * sim.model.ncell[1] * sim.set.ppc * sim.set.ppc;
       for (PetscInt k = 0; k < layers_; ++k)
         for (PetscInt i = 0; i < ncol; ++i) {
           ParticleInit q{};
@@ -307,8 +308,8 @@ public:
           q.lp[1] = std::fmin(0.5 * dy, 0.5 * sim.set.h);
           q.vol = dx * dy;
           q.mat = MEMBRANE;
-          q.density = sim.mats[MEMBRANE].density;
-          q.gamma = sim.mats[MEMBRANE].gamma;
+          q.density = sim.model.mats[MEMBRANE].density;
+          q.gamma = sim.model.mats[MEMBRANE].gamma;
           q.colour = 1.0;
           q.pid = base + k * ncol + i;
           out.push_back(q);
@@ -334,8 +335,8 @@ public:
     }
     double pk_particle = -1e300;
     for (const auto &q : prof_) pk_particle = std::fmax(pk_particle, q.strain_particle);
-    const double gamma = sim.mats[SOIL].gamma;
-    const double E = chain_ ? sim.chains[0].E : sim.mats[MEMBRANE].el.E;
+    const double gamma = sim.model.mats[SOIL].gamma;
+    const double E = chain_ ? sim.chains[0].E : sim.model.mats[MEMBRANE].el.E;
     std::string paper = "null", selfc = "null";
     try {
       const auto gp = giroud::paper_form(gamma, D_, Hs_, 0.0, t_, sag);
@@ -364,7 +365,7 @@ public:
            json_kv("max_slip_top", slip_top_) + sep + json_kv("max_slip_bottom", slip_bottom_) +
            sep + "\"interface\": \"" +
            (chain_ ? FaceTypeNames[(int)sim.chains[0].top.type]
-                   : InterfaceTypeNames[(int)sim.iface.type]) +
+                   : InterfaceTypeNames[(int)sim.model.iface.type]) +
            "\"" + sep + "\"giroud\": {\"paper\": " + paper + ", \"self_consistent\": " + selfc +
            "}";
     PetscFunctionReturn(0);

@@ -19,7 +19,7 @@ class LayersScene final : public Scene {
   double Hb_ = 0.5, Ht_ = 0.5, W_ = 0;
 
   double stress_exact(const Simulation &sim, double Y) const {
-    const double gb = sim.mats[0].gamma, gt = sim.mats[1].gamma, H = Hb_ + Ht_;
+    const double gb = sim.model.mats[0].gamma, gt = sim.model.mats[1].gamma, H = Hb_ + Ht_;
     return Y >= Hb_ ? -gt * (H - Y) : -gt * Ht_ - gb * (Hb_ - Y);
   }
   // int_a^b (J(sigma(Y)) - 1) dY inside one layer (Simpson, 400 intervals).
@@ -34,8 +34,8 @@ class LayersScene final : public Scene {
     return s * dY / 3.0;
   }
   double u_exact(const Simulation &sim, double Y) const {
-    if (Y <= Hb_) return integrate(sim, sim.mats[0], 0.0, Y);
-    return integrate(sim, sim.mats[0], 0.0, Hb_) + integrate(sim, sim.mats[1], Hb_, Y);
+    if (Y <= Hb_) return integrate(sim, sim.model.mats[0], 0.0, Y);
+    return integrate(sim, sim.model.mats[0], 0.0, Hb_) + integrate(sim, sim.model.mats[1], Hb_, Y);
   }
 
 public:
@@ -57,15 +57,15 @@ public:
     PetscCall(CheckCells(sim.comm, "-layers_bottom_height", Hb_, sim.set.h, &nb));
     PetscCall(CheckCells(sim.comm, "-layers_top_height", Ht_, sim.set.h, &nt));
     PetscCall(CheckCells(sim.comm, "-layers_width", W_, sim.set.h, &nW));
-    sim.origin[0] = sim.origin[1] = 0;
-    sim.ncell[0] = nW;
-    sim.ncell[1] = nb + nt + 2;
-    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
-    sim.face[YMIN] = FaceBC::Fixed;
-    sim.mats.resize(2);
-    PetscCall(MaterialFromOptions(sim.comm, "bottom", sim.mats[0]));
-    PetscCall(MaterialFromOptions(sim.comm, "top", sim.mats[1]));
-    PmpmCheckInput(sim.mats[0].gamma > 0 && sim.mats[1].gamma > 0, sim.comm,
+    sim.model.origin[0] = sim.model.origin[1] = 0;
+    sim.model.ncell[0] = nW;
+    sim.model.ncell[1] = nb + nt + 2;
+    sim.model.face[XMIN] = sim.model.face[XMAX] = FaceBC::Roller;
+    sim.model.face[YMIN] = FaceBC::Fixed;
+    sim.model.mats.resize(2);
+    PetscCall(MaterialFromOptions(sim.comm, "bottom", sim.model.mats[0]));
+    PetscCall(MaterialFromOptions(sim.comm, "top", sim.model.mats[1]));
+    PmpmCheckInput(sim.model.mats[0].gamma > 0 && sim.model.mats[1].gamma > 0, sim.comm,
                    PETSC_ERR_ARG_OUTOFRANGE,
                    "-mat_bottom_gamma and -mat_top_gamma must be > 0 for layers under self-weight");
     PetscFunctionReturn(0);
@@ -93,7 +93,7 @@ public:
         [&](double Y) { return u_exact(sim, Y); }, {H, Hb_}, c));
     const double top = -c.row_u[0], top_ex = -c.row_u_exact[0];
     const double mid = -c.row_u[1], mid_ex = -c.row_u_exact[1];
-    const MaterialEntry &b = sim.mats[0], &t = sim.mats[1];
+    const MaterialEntry &b = sim.model.mats[0], &t = sim.model.mats[1];
     const char *sep = ",\n    ";
     json = json_kv("stiffness_ratio", t.el.E / b.el.E) + sep +
            json_kv("unit_weight_ratio", t.gamma / b.gamma) + sep + json_kv("top_settlement", top) +

@@ -112,17 +112,17 @@ public:
         "): with one particle per cell the pressure passes through one of the sheet's two "
         "node rows only and the sheet slips freely on the other",
         sim.set.ppc);
-    sim.ncell[0] = 2 * nm + nl;
-    sim.ncell[1] = n2h;
-    sim.origin[0] = sim.origin[1] = 0;
-    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
-    sim.face[YMIN] = FaceBC::Fixed;
-    sim.face[YMAX] = FaceBC::Free;
-    sim.face_traction[YMAX][0] = 0;
-    sim.face_traction[YMAX][1] = -p_;
+    sim.model.ncell[0] = 2 * nm + nl;
+    sim.model.ncell[1] = n2h;
+    sim.model.origin[0] = sim.model.origin[1] = 0;
+    sim.model.face[XMIN] = sim.model.face[XMAX] = FaceBC::Roller;
+    sim.model.face[YMIN] = FaceBC::Fixed;
+    sim.model.face[YMAX] = FaceBC::Free;
+    sim.model.face_traction[YMAX][0] = 0;
+    sim.model.face_traction[YMAX][1] = -p_;
     ramp_ = sim.set.ramp_steps;
-    sim.mats.resize(1);
-    PetscCall(MaterialFromOptions(sim.comm, "block", sim.mats[0]));
+    sim.model.mats.resize(1);
+    PetscCall(MaterialFromOptions(sim.comm, "block", sim.model.mats[0]));
 
     ChainSpec cs;
     cs.name = "membrane";
@@ -132,7 +132,7 @@ public:
     cs.line = {margin_ + off_, H_, xend0_, H_};
     cs.end_force[0] = P_;
     cs.end_force[1] = 0;
-    sim.chain_specs.push_back(cs);
+    sim.model.chain_specs.push_back(cs);
     PetscFunctionReturn(0);
   }
 
@@ -243,7 +243,7 @@ public:
         if (sliding_[k]) ss += fric_[k], nslide += 1;
       if (nslide > 0) fslide = ss / nslide;
     }
-    const double W = sim.ncell[0] * sim.set.h;
+    const double W = sim.model.ncell[0] * sim.set.h;
     const char *sep = ",\n    ";
     json = json_kv("force", P_) + sep + json_kv("pressure", p_) + sep + json_kv("mu_top", mu_t) +
            sep + json_kv("mu_bottom", mu_b) + sep + json_kv("axial_stiffness", J) + sep +

@@ -17,16 +17,16 @@ void FillRegular(const Simulation &sim, const MaterialAt &at, ParticleList &out)
       for (PetscInt b = 0; b < ppc; ++b)
         for (PetscInt a = 0; a < ppc; ++a) {
           ParticleInit q{};
-          q.x[0] = sim.origin[0] + i * h + (a + 0.5) * dx;
-          q.x[1] = sim.origin[1] + j * h + (b + 0.5) * dx;
+          q.x[0] = sim.model.origin[0] + i * h + (a + 0.5) * dx;
+          q.x[1] = sim.model.origin[1] + j * h + (b + 0.5) * dx;
           const int m = at(q.x);
           if (m < 0) continue;
           q.lp[0] = q.lp[1] = 0.5 * dx;
           q.vol = dx * dx;
           q.mat = m;
-          q.density = sim.mats[m].density;
-          q.gamma = sim.mats[m].gamma;
-          q.pid = ((j * sim.ncell[0] + i) * ppc + b) * ppc + a;
+          q.density = sim.model.mats[m].density;
+          q.gamma = sim.model.mats[m].gamma;
+          q.pid = ((j * sim.model.ncell[0] + i) * ppc + b) * ppc + a;
           out.push_back(q);
         }
 }

@@ -55,7 +55,7 @@ class TrapdoorScene final : public Scene, public SupportMotion {
   std::vector<int> rec_conv_;
   std::vector<PetscInt> rec_steps_;
 
-  double gamma(const Simulation &sim) const { return sim.mats[0].gamma; }
+  double gamma(const Simulation &sim) const { return sim.model.mats[0].gamma; }
 
   // The door's nodes move at speed_ (down); the rest of the base is fixed.
   void set_door_speed(Simulation &sim) {
@@ -67,13 +67,13 @@ class TrapdoorScene final : public Scene, public SupportMotion {
   // Terzaghi's arching pressure over gamma H for lateral stress ratio K (docs/method.md,
   // section 6.4).
   double terzaghi_ratio(const Simulation &sim, double K) const {
-    const auto &dp = dynamic_cast<const DruckerPrager &>(*sim.mats[0].model).params();
+    const auto &dp = dynamic_cast<const DruckerPrager &>(*sim.model.mats[0].model).params();
     const double g = gamma(sim);
     return giroud::terzaghi_pressure(g, B_, H_, K * std::tan(dp.phi_deg * kDeg), dp.cohesion) /
            (g * H_);
   }
   double ka(const Simulation &sim) const {
-    const auto &dp = dynamic_cast<const DruckerPrager &>(*sim.mats[0].model).params();
+    const auto &dp = dynamic_cast<const DruckerPrager &>(*sim.model.mats[0].model).params();
     const double s = std::sin(dp.phi_deg * kDeg);
     return (1 - s) / (1 + s);
   }
@@ -153,20 +153,21 @@ public:
                    "-trapdoor_soil_width (%g m) must be at least the door width %g m", W_, B_);
     // room below the base for the soil that follows the door: its largest displacement + 2 cells
     base_j_ = static_cast<PetscInt>(std::ceil(disp_.back() * B_ / sim.set.h - 1e-9)) + 2;
-    sim.origin[0] = 0;
-    sim.origin[1] = -base_j_ * sim.set.h;
-    sim.ncell[0] = nw;
-    sim.ncell[1] = base_j_ + nh + 1; // a cell above the surface for the top particles' support
-    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
-    sim.face[YMIN] = FaceBC::Fixed;
-    sim.face[YMAX] = FaceBC::Free;
-    sim.mats.resize(1);
-    PetscCall(MaterialFromOptions(sim.comm, "soil", sim.mats[0]));
-    const auto *dp = dynamic_cast<const DruckerPrager *>(sim.mats[0].model.get());
+    sim.model.origin[0] = 0;
+    sim.model.origin[1] = -base_j_ * sim.set.h;
+    sim.model.ncell[0] = nw;
+    sim.model.ncell[1] =
+        base_j_ + nh + 1; // a cell above the surface for the top particles' support
+    sim.model.face[XMIN] = sim.model.face[XMAX] = FaceBC::Roller;
+    sim.model.face[YMIN] = FaceBC::Fixed;
+    sim.model.face[YMAX] = FaceBC::Free;
+    sim.model.mats.resize(1);
+    PetscCall(MaterialFromOptions(sim.comm, "soil", sim.model.mats[0]));
+    const auto *dp = dynamic_cast<const DruckerPrager *>(sim.model.mats[0].model.get());
     PmpmCheckInput(dp && dp->params().phi_deg > 0, sim.comm, PETSC_ERR_USER_INPUT,
                    "-mat_soil_model must be drucker_prager with -mat_soil_friction_angle > 0 (the "
                    "soil arches by friction)");
-    PmpmCheckInput(sim.mats[0].gamma > 0, sim.comm, PETSC_ERR_USER_INPUT,
+    PmpmCheckInput(sim.model.mats[0].gamma > 0, sim.comm, PETSC_ERR_USER_INPUT,
                    "-mat_soil_gamma must be > 0: the soil's weight is the door's load");
     // the supports: every node at or below the base; the door's (i <= nb) move, share 1 (1/2 at
     // the edge) of the door's speed, and weigh the door's force by that share
@@ -176,7 +177,7 @@ public:
       for (PetscInt i = 0; i <= nw; ++i) {
         const double share = i < nb ? 1.0 : (i == nb ? 0.5 : 0.0);
         for (int d = 0; d < DIM; ++d) {
-          pv.key.push_back(PrescribedKey(i, j, d, sim.ncell));
+          pv.key.push_back(PrescribedKey(i, j, d, sim.model.ncell));
           pv.v.push_back(0.0);
           pv.weight.push_back(share);
         }
@@ -307,7 +308,7 @@ public:
     for (size_t k = 1; k < rec_p_.size(); ++k)
       if (kmin == 0 || rec_p_[k] < rec_p_[kmin]) kmin = k;
     const char *sep = ",\n    ";
-    const auto &dp = dynamic_cast<const DruckerPrager &>(*sim.mats[0].model).params();
+    const auto &dp = dynamic_cast<const DruckerPrager &>(*sim.model.mats[0].model).params();
     json = json_kv("door_width", B_) + sep + json_kv("height", H_) + sep +
            json_kv("soil_half_width", W_) + sep + json_kv("gamma", gamma(sim)) + sep +
            json_kv("phi", dp.phi_deg) + sep + json_kv("cohesion", dp.cohesion) + sep +

@@ -416,17 +416,17 @@ public:
     xe_[0] = margin_ + La_;
     xe_[1] = margin_ + La_ + B_;
     // y: the base fills the grid from its bottom face, y = -offset h (half a cell more base)
-    sim.origin[0] = 0;
-    sim.origin[1] = -offset_ * h;
-    sim.ncell[0] = nB + 2 * (nLa + nM);
-    sim.ncell[1] = nHb + nH + 2 + (offset_ > 0 ? 1 : 0);
-    sim.face[XMIN] = sim.face[XMAX] = FaceBC::Roller;
-    sim.face[YMIN] = FaceBC::Fixed;
-    sim.face[YMAX] = FaceBC::Free;
-    sim.mats.resize(2);
-    PetscCall(MaterialFromOptions(sim.comm, "base", sim.mats[BASE]));
-    PetscCall(MaterialFromOptions(sim.comm, "cover", sim.mats[COVER]));
-    PmpmCheckInput(sim.mats[COVER].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+    sim.model.origin[0] = 0;
+    sim.model.origin[1] = -offset_ * h;
+    sim.model.ncell[0] = nB + 2 * (nLa + nM);
+    sim.model.ncell[1] = nHb + nH + 2 + (offset_ > 0 ? 1 : 0);
+    sim.model.face[XMIN] = sim.model.face[XMAX] = FaceBC::Roller;
+    sim.model.face[YMIN] = FaceBC::Fixed;
+    sim.model.face[YMAX] = FaceBC::Free;
+    sim.model.mats.resize(2);
+    PetscCall(MaterialFromOptions(sim.comm, "base", sim.model.mats[BASE]));
+    PetscCall(MaterialFromOptions(sim.comm, "cover", sim.model.mats[COVER]));
+    PmpmCheckInput(sim.model.mats[COVER].gamma > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-mat_cover_gamma must be > 0 (the cover's weight is the load)");
     // Terzaghi's phi: the cover's own friction angle when it has one
     PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-mat_cover_friction_angle", &phi_, nullptr));
@@ -445,7 +445,7 @@ public:
     // vertices at the edges, so that chain points fall on them whatever the spacing
     cs.line = {margin_, Hb_, xe_[0], Hb_, xe_[1], Hb_, W_ - margin_, Hb_};
     cs.pin_start = cs.pin_end = pin_;
-    sim.chain_specs.push_back(cs);
+    sim.model.chain_specs.push_back(cs);
     PetscFunctionReturn(0);
   }
 
@@ -535,7 +535,7 @@ public:
     const Chain &c = sim.chains[0];
     const Sheet q = FullSheet(c);
     const double J = c.law.J;
-    const double gamma = sim.mats[COVER].gamma, sigma_n = gamma * H_;
+    const double gamma = sim.model.mats[COVER].gamma, sigma_n = gamma * H_;
     const double mu_sum = c.top.mu + c.bottom.mu, m_cf = mu_sum * sigma_n;
     const Span sp = MeasureSpan(q);
     const SpanPressure pr = MeasurePressure(q, sp, c.line_weight);

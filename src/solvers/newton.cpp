@@ -285,7 +285,7 @@ template <class Shape> PetscErrorCode ParticleBlocks(NewtonSolver &ns, Vec U, No
   PetscCall(TrialState<Shape>(ns, U, P));
   for (PetscInt p = 0; p < P.n; ++p) {
     const PetscInt mat = P.mat[p];
-    piola_tangent(*sim.mats[mat].model, &ns.G[p * DIM * DIM], P.stress + p * NSTRESS,
+    piola_tangent(*sim.model.mats[mat].model, &ns.G[p * DIM * DIM], P.stress + p * NSTRESS,
                   &ns.snew[p * NSTRESS], P.F + p * DIM * DIM, P.eps_p[p], A,
                   ns.eigen.empty() ? nullptr : &ns.eigen[3 * p]);
     weights<Shape>(P.x + p * DIM, P.lp + p * DIM, sim.grid.origin, sim.grid.h, W);
@@ -444,8 +444,8 @@ PetscErrorCode FormJacobian(SNES, Vec U, Mat Jac, Mat B, void *ctx) {
 // The entry of Simulation::prescribed that holds dof d of node (i, j), or -1.
 PetscInt PrescribedEntry(const Simulation &sim, PetscInt i, PetscInt j, int d) {
   const std::vector<PetscInt> &key = sim.prescribed.key;
-  if (key.empty() || i < 0 || j < 0 || i > sim.ncell[0] || j > sim.ncell[1]) return -1;
-  const PetscInt k = PrescribedKey(i, j, d, sim.ncell);
+  if (key.empty() || i < 0 || j < 0 || i > sim.model.ncell[0] || j > sim.model.ncell[1]) return -1;
+  const PetscInt k = PrescribedKey(i, j, d, sim.model.ncell);
   const auto it = std::lower_bound(key.begin(), key.end(), k);
   return it != key.end() && *it == k ? static_cast<PetscInt>(it - key.begin()) : -1;
 }
@@ -481,10 +481,10 @@ PetscErrorCode Loads(NewtonSolver &ns) {
   const bool tr = !sim.traction_idx.empty();
   if (sim.set.shape == ShapeKind::Linear) {
     p2g<LinearShape>(P, load, G);
-    if (tr) p2g_traction<LinearShape>(P, sim.loads, sim.traction_idx, 1.0, G);
+    if (tr) p2g_traction<LinearShape>(P, sim.model.loads, sim.traction_idx, 1.0, G);
   } else {
     p2g<UGIMPShape>(P, load, G);
-    if (tr) p2g_traction<UGIMPShape>(P, sim.loads, sim.traction_idx, 1.0, G);
+    if (tr) p2g_traction<UGIMPShape>(P, sim.model.loads, sim.traction_idx, 1.0, G);
   }
   // the chains' weight and end loads, and their mass (support), into their bodies' blocks
   for (const Chain &c : sim.chains) p2g_chain(c, load, G, sim.grid);
@@ -512,7 +512,7 @@ PetscErrorCode Loads(NewtonSolver &ns) {
       const double *node = G.node(i, j);
       const PetscInt q = ((j - ns.s[1]) * ns.m[0] + (i - ns.s[0])) * DIM;
       bool held[DIM];
-      held_dofs(i, j, sim.ncell, sim.face, held);
+      held_dofs(i, j, sim.model.ncell, sim.model.face, held);
       const bool supported = body_sum(node, GridDof::M) > ns.small_cut * mmax;
       for (int a = 0; a < DIM; ++a) {
         f[q + a] = body_sum(node, GridDof::FEXT + a);
@@ -723,7 +723,7 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   if (ns.shrink != 0) { // this step's share of the eigenstrain, per particle (3: xx yy zz)
     ParticleView P;
     PetscCall(ParticlesGetView(sim.parts, P));
-    shrinkage_increment(P, sim.shrink, ns.shrink, ns.eigen);
+    shrinkage_increment(P, sim.model.shrink, ns.shrink, ns.eigen);
     PetscCall(ParticlesRestoreView(sim.parts, P));
   }
   double atol = PETSC_DEFAULT;
@@ -847,10 +847,10 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver & /*ns*/) {
                c.name.c_str(), FaceTypeNames[(int)c.top.type], FaceTypeNames[(int)c.bottom.type],
                c.name.c_str(), c.name.c_str(), fix);
   // without chains -interface_type is the colour-1 body's interface
-  PetscCheck(!sim.chains.empty() || sim.iface.type == InterfaceType::Bonded, sim.comm,
+  PetscCheck(!sim.chains.empty() || sim.model.iface.type == InterfaceType::Bonded, sim.comm,
              PETSC_ERR_SUP,
              "-solver newton does not support frictional interfaces (-interface_type %s) yet%s",
-             InterfaceTypeNames[(int)sim.iface.type], fix);
+             InterfaceTypeNames[(int)sim.model.iface.type], fix);
   // stages: stage 0's loads, shrinkage, void and moving-support stages have a load path
   // (Newton's LoadPath)
   const auto *motion = dynamic_cast<const SupportMotion *>(sim.scene.get());
@@ -876,12 +876,12 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver & /*ns*/) {
              fix);
   PetscCheck(sim.set.restart.empty() && sim.set.checkpoint_every == 0, sim.comm, PETSC_ERR_SUP,
              "-solver newton does not support -restart or -checkpoint_every yet%s", fix);
-  for (size_t k = 0; k < sim.mats.size(); ++k) {
-    const Material &m = *sim.mats[k].model;
+  for (size_t k = 0; k < sim.model.mats.size(); ++k) {
+    const Material &m = *sim.model.mats[k].model;
     PetscCheck(m.has_tangent(), sim.comm, PETSC_ERR_SUP,
                "-solver newton does not support -mat_%s_model %s yet (it has no consistent "
                "tangent)%s",
-               sim.mats[k].name.c_str(), m.model(), fix);
+               sim.model.mats[k].name.c_str(), m.model(), fix);
   }
   PetscFunctionReturn(0);
 }
@@ -1062,7 +1062,7 @@ PetscErrorCode NewtonSolver::setup(Simulation &sim) {
     PetscCall(PetscLogEventRegister("NewtonSolve", cls, &ev_solve));
     PetscCall(PetscLogEventRegister("NewtonCommit", cls, &ev_commit));
   }
-  for (const auto &m : sim.mats) kref = std::fmax(kref, m.model->wave_modulus());
+  for (const auto &m : sim.model.mats) kref = std::fmax(kref, m.model->wave_modulus());
   PetscCall(CreateGrid(*this, sim, help));
   PetscCall(CreateSNES(*this, sim));
   PetscFunctionReturn(0);
@@ -1264,7 +1264,7 @@ PetscErrorCode NewtonSolver::solve_stage(Simulation &sim) {
                           "pmpm %s: %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g m, shape "
                           "%s, -solver newton: %" PetscInt_FMT " load steps, tolerance %g; stage "
                           "%d: %s%s\n",
-                          s.scene.c_str(), sim.ncell[0], sim.ncell[1], s.h,
+                          s.scene.c_str(), sim.model.ncell[0], sim.model.ncell[1], s.h,
                           ShapeKindNames[(int)s.shape], ns.load_steps, s.tol, (int)sim.stage, what,
                           path.ramp_loads ? "" : " (stage fraction per step)"));
   if (path.release) PetscCall(ReleaseStart(ns));

@@ -90,7 +90,7 @@ double ChainsElasticEnergy(const Simulation &sim) {
 double ElasticEnergy(const Simulation &sim, const ParticleView &P) {
   double u = 0;
   for (PetscInt p = 0; p < P.n; ++p) {
-    const ElasticConstants &c = sim.mats[P.mat[p]].el;
+    const ElasticConstants &c = sim.model.mats[P.mat[p]].el;
     u += elastic_energy(c.E, c.nu, P.vol[p], P.stress + p * NSTRESS);
   }
   return u + ChainsElasticEnergy(sim);
@@ -362,7 +362,7 @@ PetscErrorCode RelaxationSolver::StageStart(Simulation &sim, bool resume, Progre
     PetscCall(PetscPrintf(sim.comm,
                           "pmpm %s: %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g m, "
                           "shape %s, dt = %.3e s (cfl %g), tolerance %g\n",
-                          s.scene.c_str(), sim.ncell[0], sim.ncell[1], s.h,
+                          s.scene.c_str(), sim.model.ncell[0], sim.model.ncell[1], s.h,
                           ShapeKindNames[(int)s.shape], run.dt, s.cfl, s.tol));
   PetscFunctionReturn(0);
 }
@@ -409,7 +409,7 @@ PetscErrorCode RelaxationSolver::LoadWork(Simulation &sim, const Load &load,
   if (!sim.traction_idx.empty()) {
     ParticleView P;
     PetscCall(ParticlesGetView(sim.parts, P));
-    pw += TractionPower(P, sim.loads, sim.traction_idx);
+    pw += TractionPower(P, sim.model.loads, sim.traction_idx);
     PetscCall(ParticlesRestoreView(sim.parts, P));
   }
   st.budget_w_local += sim.run.dt * (load.factor * pw + rep.grid.support_power) + rep.eigen_power;
@@ -573,7 +573,7 @@ PetscErrorCode RelaxationSolver::StageEnd(Simulation &sim, const Progress &pr, d
   // together where they pull apart, and its friction counts compression only. That is sound
   // while the interface stays pressed (quasi-static loading); say so when it did not.
   const double *I = sim.iface_impulse;
-  if (sim.iface.type == InterfaceType::Paper && I[0] > 0 && I[1] > kTensionWarn * I[0])
+  if (sim.model.iface.type == InterfaceType::Paper && I[0] > 0 && I[1] > kTensionWarn * I[0])
     PetscCall(PetscPrintf(sim.comm,
                           "warning: the paper interface carried tension (%.1f %% of its "
                           "compressive normal impulse): the common normal velocity held the "

@@ -32,7 +32,7 @@ PetscErrorCode Contact(StepState &S) {
   Grid &g = sim.grid;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.contact);
-  ContactParams cp = sim.contact;
+  ContactParams cp = sim.model.contact;
   cp.dt = S.dt;
   contact_bodies(S.G, sim.chains, cp, true, S.rep.contact);
   PetscCall(GridRestoreGlobal(g, S.G));

@@ -16,7 +16,7 @@ template <class Shape> void BodyToGrid(StepState &S, const GridView &G) {
   Simulation &sim = S.sim;
   const PetscInt nb = static_cast<PetscInt>(sim.iface_idx.size());
   p2g<Shape>(S.P, S.load, G, sim.iface_idx.data(), nb, S.pshift);
-  if (sim.iface.normals == InterfaceNormals::Cells)
+  if (sim.model.iface.normals == InterfaceNormals::Cells)
     p2g_cell_colour(S.P, G); // all particles
   else
     p2g_colour_gradient<Shape>(S.P, sim.iface_idx.data(), nb, G); // in FEXT slots
@@ -53,7 +53,7 @@ PetscErrorCode GhostAdd(StepState &S) {
 PetscErrorCode CellNormals(StepState &S) {
   Grid &gb = S.sim.iface_grid.body;
   PetscFunctionBeginUser;
-  if (S.sim.iface.normals != InterfaceNormals::Cells) PetscFunctionReturn(0);
+  if (S.sim.model.iface.normals != InterfaceNormals::Cells) PetscFunctionReturn(0);
   PmpmLogEventScope(step_events.iface);
   PetscCall(GridGlobalToLocal(gb));
   PetscCall(GridWithLocal(gb, false, [&](const GridView &C) {
@@ -66,7 +66,7 @@ PetscErrorCode CellNormals(StepState &S) {
 PetscErrorCode Update(StepState &S) {
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.iface);
-  InterfaceParams ip = S.sim.iface;
+  InterfaceParams ip = S.sim.model.iface;
   ip.dt = S.dt;
   ip.damping_alpha = S.gp.damping_alpha;
   PetscCall(GridWithGlobal(S.sim.iface_grid.body,

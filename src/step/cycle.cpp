@@ -25,7 +25,7 @@ template <class Shape> PetscErrorCode ParticlesToGrid(StepState &S, const Active
     PetscCall(GridGetLocal(sim.grid, true, G));
     p2g<Shape>(S.P, S.load, G, nullptr, 0, S.pshift);
     if (!sim.traction_idx.empty())
-      p2g_traction<Shape>(S.P, sim.loads, sim.traction_idx, S.load.factor, G);
+      p2g_traction<Shape>(S.P, sim.model.loads, sim.traction_idx, S.load.factor, G);
     PetscCall(GridRestoreLocal(sim.grid, G));
   }
   PetscCall(RunHooks(h, &StepHook::p2g, S));
@@ -53,7 +53,7 @@ PetscErrorCode GridMomentum(StepState &S, const FireMix &fire, const ActiveHooks
   gp.dt = S.dt;
   const bool local = sim.set.damping == Damping::Local || sim.set.damping == Damping::Both;
   gp.damping_alpha = local ? sim.set.damping_alpha : 0.0;
-  for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.face[f];
+  for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.model.face[f];
   gp.prescribed = &sim.prescribed;
   if (fire.on) {
     gp.fire = true;
@@ -92,7 +92,7 @@ template <class Shape> PetscErrorCode MuslRemap(StepState &S) {
   PetscCall(GridRestoreLocal(g, G));
   PetscCall(GridLocalToGlobalAdd(g));
   PetscCall(GridGetGlobal(g, G));
-  grid_velocity(G, sim.face, &sim.prescribed);
+  grid_velocity(G, sim.model.face, &sim.prescribed);
   PetscCall(GridRestoreGlobal(g, G));
   PetscCall(GridGlobalToLocal(g));
   PetscCall(GridGetLocal(g, false, G));
@@ -118,7 +118,7 @@ PetscErrorCode GridToParticles(StepState &S, const ActiveHooks &h, const double 
   pp.elastic = elastic;
   pp.hoop = sim.scratch.hoop.empty() ? nullptr : sim.scratch.hoop.data(); // -geometry axisymmetric
   if (elastic && sim.step_energy) { // relaxation's energy check: G2P sums the elastic energy
-    for (const auto &m : sim.mats) energy.insert(energy.end(), {m.el.E, m.el.nu});
+    for (const auto &m : sim.model.mats) energy.insert(energy.end(), {m.el.E, m.el.nu});
     pp.energy = energy.data();
   }
   PetscCall(RunHooks(h, &StepHook::before_g2p, S));
@@ -141,10 +141,10 @@ PetscErrorCode GridToParticles(StepState &S, const ActiveHooks &h, const double 
 // velocity gradient in between (F-bar) or subtracts from it (an eigenstrain): the materials'
 // (E, nu) pairs for G2P, or false.
 bool FusedStress(const Simulation &sim, const ActiveHooks &h, std::vector<double> &elastic) {
-  elastic.resize(2 * sim.mats.size());
+  elastic.resize(2 * sim.model.mats.size());
   bool fuse = !h.reads_gradient;
-  for (size_t m = 0; fuse && m < sim.mats.size(); ++m)
-    fuse = sim.mats[m].model->linear_elastic_rate(elastic[2 * m], elastic[2 * m + 1]);
+  for (size_t m = 0; fuse && m < sim.model.mats.size(); ++m)
+    fuse = sim.model.mats[m].model->linear_elastic_rate(elastic[2 * m], elastic[2 * m + 1]);
   return fuse;
 }
 
@@ -314,7 +314,7 @@ PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio) {
   GridUpdateParams gp; // dt = 0, no damping: only the force sums are wanted
   PetscFunctionBeginUser;
   for (int d = 0; d < DIM; ++d) load.gdir[d] = sim.set.gdir[d];
-  for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.face[f];
+  for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.model.face[f];
   gp.prescribed = &sim.prescribed;
   PetscCall(ParticlesGetView(sim.parts, P));
   PetscCall(GridGetLocal(g, true, G));
@@ -322,15 +322,15 @@ PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio) {
   switch (shape) {
   case ShapeKind::Linear:
     p2g<LinearShape>(P, load, G);
-    if (tr) p2g_traction<LinearShape>(P, sim.loads, sim.traction_idx, load.factor, G);
+    if (tr) p2g_traction<LinearShape>(P, sim.model.loads, sim.traction_idx, load.factor, G);
     break;
   case ShapeKind::UGIMP:
     p2g<UGIMPShape>(P, load, G);
-    if (tr) p2g_traction<UGIMPShape>(P, sim.loads, sim.traction_idx, load.factor, G);
+    if (tr) p2g_traction<UGIMPShape>(P, sim.model.loads, sim.traction_idx, load.factor, G);
     break;
   case ShapeKind::CPGIMP:
     p2g<CPGIMPShape>(P, load, G);
-    if (tr) p2g_traction<CPGIMPShape>(P, sim.loads, sim.traction_idx, load.factor, G);
+    if (tr) p2g_traction<CPGIMPShape>(P, sim.model.loads, sim.traction_idx, load.factor, G);
     break;
   }
   // the chains' tension, weight and end loads (grid_update sums a node's bodies)

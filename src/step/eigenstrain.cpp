@@ -15,7 +15,7 @@ bool Active(const Simulation &, const Load &load) {
 PetscErrorCode Increment(StepState &S) {
   Simulation &sim = S.sim;
   PetscFunctionBeginUser;
-  S.rep.eigen_power = shrinkage_increment(S.P, sim.shrink, S.load.shrink, sim.scratch.eigen);
+  S.rep.eigen_power = shrinkage_increment(S.P, sim.model.shrink, S.load.shrink, sim.scratch.eigen);
   S.eigen = sim.scratch.eigen.data();
   PetscFunctionReturn(0);
 }

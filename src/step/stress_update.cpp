@@ -5,7 +5,7 @@ namespace pmpm {
 
 void UpdateStresses(Simulation &sim, const double *dudx, const double *F, double *stress,
                     double *eps_p, const double *eigen) {
-  for (size_t m = 0; m < sim.mats.size(); ++m) {
+  for (size_t m = 0; m < sim.model.mats.size(); ++m) {
     StressBatch b;
     b.n = static_cast<int>(sim.mat_idx[m].size());
     if (b.n == 0) continue;
@@ -16,7 +16,7 @@ void UpdateStresses(Simulation &sim, const double *dudx, const double *F, double
     b.eps_p = eps_p;
     b.eigen = eigen;
     b.hoop = sim.scratch.hoop.empty() ? nullptr : sim.scratch.hoop.data(); // -geometry axisymmetric
-    sim.mats[m].model->update_stress(b);
+    sim.model.mats[m].model->update_stress(b);
   }
 }
 

@@ -191,13 +191,11 @@ struct Scratch {
   std::vector<double> chain_buf;  // the chains' points packed for their allreduce
 };
 
-struct Simulation {
-  MPI_Comm comm = PETSC_COMM_WORLD;
-  PetscMPIInt rank = 0, size = 1;
-  Settings set;
-  std::unique_ptr<Scene> scene;
-
-  // set by the scene
+// What the scene and the options define, read once at setup and not changed by the run (a
+// stage's change is the scene's, through its begin_stage): the box, its faces, the materials, the
+// membranes' specs, the surface loads, the interface's and the chains' contact parameters and
+// the degrading zone.
+struct Model {
   double origin[DIM] = {0, 0};
   PetscInt ncell[DIM] = {0, 0};
   FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
@@ -206,22 +204,32 @@ struct Simulation {
   std::vector<MaterialEntry> mats;
   std::vector<ChainSpec> chain_specs; // membranes as chains (chain.hpp), bottom to top
   double chain_spacing = 0.25;        // -chain_spacing: point spacing in cells
+  InterfaceParams iface;              // -interface_type, -interface_mu_top/bottom
+  ContactParams contact;              // stacked-body contact at chain nodes
+  std::vector<ParticleLoad> loads;    // surface loads, every rank alike (particles.hpp)
+  Shrinkage shrink;                   // the degrading zone (degradation.hpp)
+};
+
+struct Simulation {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  PetscMPIInt rank = 0, size = 1;
+  Settings set;
+  std::unique_ptr<Scene> scene;
+
+  Model model; // what the scene and the options define
 
   Grid grid;
   Balance balance; // -balance: the partition by particle counts (balance.hpp)
   Particles parts;
-  InterfaceParams iface;                 // -interface_type, -interface_mu_top/bottom
   InterfaceGrid iface_grid;              // body 1's field, only when an interface is on
   std::vector<PetscInt> iface_idx;       // body-1 (colour 1) particles (this rank)
   InterfaceStats iface_stats;            // last step's counts (global)
   double iface_impulse[2] = {0, 0};      // normal impulse over the run: compression, tension
   std::vector<Chain> chains;             // every rank holds every point
-  ContactParams contact;                 // stacked-body contact at chain nodes
   ContactStats contact_stats;            // last step's (global)
   double contact_impulse[2] = {0, 0};    // chain faces' normal impulse over the run: +, -
   std::vector<double> wave_modulus;      // per material
   std::vector<std::vector<int>> mat_idx; // particles of each material (this rank)
-  std::vector<ParticleLoad> loads;       // surface loads, every rank alike (particles.hpp)
   std::vector<PetscInt> traction_idx;    // particles carrying a surface load (this rank)
   Scratch scratch;                       // the step's work arrays
   // The next Step sums the particles' elastic energy in G2P when its stress update is fused
@@ -237,7 +245,6 @@ struct Simulation {
   PetscInt stage = 0, nstages = 0;
   PetscInt stage_ramp = 0;
   double stage_shrink = 0;
-  Shrinkage shrink;
   RunState run;
   PetscInt particles_setup = 0; // particles the scene generated (a checkpoint must match)
   // -restart: the stage loop resumes at `stage`, inside it (after run.stage_step steps) when
