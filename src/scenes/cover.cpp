@@ -895,6 +895,8 @@ public:
   // What changes during a run: the chains' own face types (stage 0 may run them as paper), the
   // shrinkage and void applied so far, the stage-0 references and the stage record.
   static constexpr int kRow = 18;
+  // a stage row's kind, checkpointed as its index here (the order is the file format)
+  static constexpr const char *kStageKinds[4] = {"geostatic", "shrink", "void", "load"};
   PetscErrorCode checkpoint_write(Simulation &, PetscViewer v) override {
     PetscFunctionBeginUser;
     std::vector<double> ft, ref, rows;
@@ -904,10 +906,9 @@ public:
       ref.push_back(q.second);
     }
     for (const StageRow &q : rows_) {
-      const double kind = q.kind == "geostatic" ? 0
-                          : q.kind == "shrink"  ? 1
-                          : q.kind == "void"    ? 2
-                                                : 3;
+      const double kind =
+          static_cast<double>(std::find(std::begin(kStageKinds), std::end(kStageKinds), q.kind) -
+                              std::begin(kStageKinds));
       const double row[kRow] = {double(q.stage),
                                 kind,
                                 q.shrink,
@@ -956,12 +957,11 @@ public:
       for (size_t j = 0; j < ref.size(); j += 2)
         surf_ref_[static_cast<PetscInt>(ref[j])] = ref[j + 1];
     rows_.clear();
-    const char *kinds[4] = {"geostatic", "shrink", "void", "load"};
     for (size_t j = 0; j < rows.size(); j += kRow) {
       const double *q = &rows[j];
       StageRow r;
       r.stage = static_cast<int>(q[0]);
-      r.kind = kinds[static_cast<int>(q[1])];
+      r.kind = kStageKinds[static_cast<int>(q[1])];
       r.shrink = q[2];
       r.void_width = q[3];
       r.surface_settlement = q[4];
