@@ -7,6 +7,7 @@ void UpdateStresses(Simulation &sim, const double *dudx, const double *F, double
                     double *eps_p, const double *eigen) {
   for (size_t m = 0; m < sim.model.mats.size(); ++m) {
     StressBatch b;
+    b.dim = sim.parts.dim;
     b.n = static_cast<int>(sim.mat_idx[m].size());
     if (b.n == 0) continue;
     b.idx = sim.mat_idx[m].data();

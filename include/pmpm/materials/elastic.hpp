@@ -46,7 +46,9 @@ public:
     return true;
   }
   void update_stress(const StressBatch &b) const override {
-    if (b.hoop) // the geometry once per batch (geometry.hpp)
+    if (b.dim == 3) // the 3x3 tensors of the plastic models, without a return map
+      predictor_corrector(b, c_, [](Mat3 &, double &) {});
+    else if (b.hoop) // the geometry once per batch (geometry.hpp)
       update<true>(b);
     else
       update<false>(b);
@@ -71,14 +73,15 @@ private:
   ElasticConstants c_;
 };
 
-// Compressible neo-Hookean: sigma = (mu (B - I) + lambda ln J I) / J, B = F F^T (plane strain,
-// F_zz = 1; axisymmetric, F_zz = F_thth = r / r0). Hyperelastic, so the stress is a function of F
-// alone: exact at any deformation.
+// Compressible neo-Hookean: sigma = (mu (B - I) + lambda ln J I) / J, B = F F^T (3D: F is D x D,
+// row-major; plane strain, F_zz = 1; axisymmetric, F_zz = F_thth = r / r0). Hyperelastic, so the
+// stress is a function of F alone: exact at any deformation.
+template <int D = DIM>
 inline Mat3 neo_hookean_stress(const ElasticConstants &c, const double *Fp, double Fzz = 1.0) {
   Mat3 F = Mat3::Identity();
   F(2, 2) = Fzz;
-  for (int i = 0; i < DIM; ++i)
-    for (int j = 0; j < DIM; ++j) F(i, j) = Fp[i * DIM + j];
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) F(i, j) = Fp[i * D + j];
   const double J = F.determinant();
   const Mat3 B = F * F.transpose();
   return (c.G() * (B - Mat3::Identity()) + c.lambda() * std::log(J) * Mat3::Identity()) / J;
@@ -100,7 +103,12 @@ public:
   bool rate_form() const override { return kRateForm; }
   bool plastic() const override { return kPlastic; }
   void update_stress(const StressBatch &b) const override {
-    if (b.hoop) { // the geometry once per batch: F_zz = F_thth (geometry.hpp)
+    if (b.dim == 3) {
+      for (int k = 0; k < b.n; ++k) {
+        const int p = b.idx[k];
+        tensor_to_stress<3>(neo_hookean_stress<3>(c_, b.F + p * 9), b.stress + p * NStress<3>);
+      }
+    } else if (b.hoop) { // the geometry once per batch: F_zz = F_thth (geometry.hpp)
       for (int k = 0; k < b.n; ++k) {
         const int p = b.idx[k];
         tensor_to_stress(neo_hookean_stress(c_, b.F + p * DIM * DIM, b.hoop[2 * p + 1]),

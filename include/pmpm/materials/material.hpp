@@ -1,9 +1,10 @@
 // The material interface: one batched stress update per material per step.
 //
 // A material receives, for each of its particles, the velocity gradient times dt (the
-// increment of the displacement gradient in the current configuration, a DIM x DIM matrix),
-// the updated deformation gradient F, and updates the particle's Cauchy stress (xx yy zz xy,
-// tension positive) and its internal state (equivalent plastic strain). Rate-form models use
+// increment of the displacement gradient in the current configuration, a dim x dim matrix),
+// the updated deformation gradient F, and updates the particle's Cauchy stress (xx yy zz xy in
+// 2D, xx yy zz xy yz xz in 3D: NStress, config.hpp; tension positive) and its internal state
+// (equivalent plastic strain). Rate-form models use
 // the Jaumann rate for objectivity; hyperelastic models compute the stress from F directly.
 #pragma once
 #include "pmpm/util/config.hpp"
@@ -15,11 +16,12 @@ namespace pmpm {
 
 // Plain views over particle arrays; idx lists the particles this material owns.
 struct StressBatch {
+  int dim = 2;                  // the run's dimension (2: plane strain or axisymmetric; 3)
   int n = 0;                    // number of particles in idx
   const int *idx = nullptr;     // particle indices
-  const double *dudx = nullptr; // DIM*DIM per particle: L*dt, row-major (dv_i/dx_j)
-  const double *F = nullptr;    // DIM*DIM per particle: deformation gradient after the step
-  double *stress = nullptr;     // NSTRESS per particle
+  const double *dudx = nullptr; // dim*dim per particle: L*dt, row-major (dv_i/dx_j)
+  const double *F = nullptr;    // dim*dim per particle: deformation gradient after the step
+  double *stress = nullptr;     // NStress<dim> per particle
   double *eps_p = nullptr;      // 1 per particle: accumulated equivalent plastic strain
   // Optional eigenstrain increment (waste degradation, degradation.hpp): 3 per particle (xx,
   // yy, zz); the stress sees de - de*. Rate-form models only (Material::rate_form).
@@ -42,10 +44,14 @@ struct ElasticConstants {
 // Elastic energy of a particle of volume V under stress s (xx, yy, zz, xy): V s : C^-1 : s / 2
 // (plane strain, s_zz kept). One expression for relaxation's energy check (ElasticEnergy) and
 // for G2P, which sums it on the steps that check (G2PParams::energy): the same sums bit for bit.
+// In 3D (D = 3) the shears yz and xz add to xy's term.
+template <int D = DIM>
 inline double elastic_energy(double E, double nu, double V, const double *s) {
   const double sq = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
   const double cross = s[0] * s[1] + s[1] * s[2] + s[2] * s[0];
-  return V * ((sq - 2 * nu * cross) + 2 * (1 + nu) * s[3] * s[3]) / (2 * E);
+  double shear = s[3] * s[3];
+  if constexpr (D == 3) shear += s[4] * s[4] + s[5] * s[5];
+  return V * ((sq - 2 * nu * cross) + 2 * (1 + nu) * shear) / (2 * E);
 }
 
 // One particle's state at which -solver newton differentiates the update (piola_tangent,
@@ -85,11 +91,11 @@ public:
   virtual void piola_tangent(const TangentPoint & /*pt*/, double * /*A*/) const {}
 };
 
-// Small-strain increment and spin from L*dt (3x3, plane strain: zz rows/cols zero).
-inline void strain_and_spin(const double *dudx, Mat3 &de, Mat3 &dw) {
+// Small-strain increment and spin from L*dt (D x D, row-major; 3x3, in 2D zz rows/cols zero).
+template <int D = DIM> inline void strain_and_spin(const double *dudx, Mat3 &de, Mat3 &dw) {
   Mat3 g = Mat3::Zero();
-  for (int i = 0; i < DIM; ++i)
-    for (int j = 0; j < DIM; ++j) g(i, j) = dudx[i * DIM + j];
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) g(i, j) = dudx[i * D + j];
   de = 0.5 * (g + g.transpose());
   dw = 0.5 * (g - g.transpose());
 }
@@ -106,32 +112,35 @@ inline Mat3 elastic_increment(const ElasticConstants &c, const Mat3 &de) {
 
 // The rate-form elastoplastic update shared by the plastic models: elastic predictor (Jaumann-
 // rotated old stress + C : de) and a return map ret(Mat3 &sigma, double &eps_p) per particle.
-// Hoop: the axisymmetric hoop strain increment (StressBatch::hoop) in de's zz entry.
-template <bool Hoop, class Return>
+// D: the dimension (StressBatch::dim); Hoop: the axisymmetric hoop strain increment
+// (StressBatch::hoop, 2D only) in de's zz entry.
+template <int D, bool Hoop, class Return>
 inline void predictor_corrector_loop(const StressBatch &b, const ElasticConstants &el,
                                      Return &ret) {
+  constexpr int NS = NStress<D>;
   for (int k = 0; k < b.n; ++k) {
     const int p = b.idx[k];
     Mat3 de, dw;
-    strain_and_spin(b.dudx + p * DIM * DIM, de, dw);
+    strain_and_spin<D>(b.dudx + p * D * D, de, dw);
     if (Hoop) de(2, 2) = b.hoop[2 * p];
     if (b.eigen)
       for (int d = 0; d < 3; ++d) de(d, d) -= b.eigen[3 * p + d];
-    Mat3 s =
-        jaumann_rotate(stress_to_tensor(b.stress + p * NSTRESS), dw) + elastic_increment(el, de);
+    Mat3 s = jaumann_rotate(stress_to_tensor<D>(b.stress + p * NS), dw) + elastic_increment(el, de);
     double ep = b.eps_p ? b.eps_p[p] : 0.0;
     ret(s, ep);
     if (b.eps_p) b.eps_p[p] = ep;
-    tensor_to_stress(s, b.stress + p * NSTRESS);
+    tensor_to_stress<D>(s, b.stress + p * NS);
   }
 }
-// The geometry chosen once per batch, not per particle.
+// The dimension and the geometry chosen once per batch, not per particle.
 template <class Return>
 inline void predictor_corrector(const StressBatch &b, const ElasticConstants &el, Return &&ret) {
-  if (b.hoop)
-    predictor_corrector_loop<true>(b, el, ret);
+  if (b.dim == 3)
+    predictor_corrector_loop<3, false>(b, el, ret);
+  else if (b.hoop)
+    predictor_corrector_loop<2, true>(b, el, ret);
   else
-    predictor_corrector_loop<false>(b, el, ret);
+    predictor_corrector_loop<2, false>(b, el, ret);
 }
 
 } // namespace pmpm
