@@ -31,7 +31,8 @@ PetscErrorCode MakeDirs(const std::string &path) {
   PetscFunctionReturn(0);
 }
 
-std::string XdmfText(const std::string &h5, PetscInt n, double time) {
+// dim: the particles' dimension (2: XY; 3: XYZ and the six stress components).
+std::string XdmfText(const std::string &h5, PetscInt n, double time, int dim) {
   char buf[4096];
   const std::string f = h5 + ":/particles/";
   auto attr = [&](const char *name, const char *type, int bs) {
@@ -54,14 +55,14 @@ std::string XdmfText(const std::string &h5, PetscInt n, double time) {
            "    <Grid Name=\"particles\" GridType=\"Uniform\">\n"
            "      <Time Value=\"%.9g\"/>\n"
            "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\"/>\n"
-           "      <Geometry GeometryType=\"XY\">\n"
-           "        <DataItem Dimensions=\"%d 2\" NumberType=\"Float\" Precision=\"8\" "
+           "      <Geometry GeometryType=\"%s\">\n"
+           "        <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" "
            "Format=\"HDF\">%sposition</DataItem>\n      </Geometry>\n",
-           time, (int)n, (int)n, f.c_str());
+           time, (int)n, dim == 3 ? "XYZ" : "XY", (int)n, dim, f.c_str());
   std::string s = buf;
-  s += attr("displacement", "Vector", 2);
-  s += attr("velocity", "Vector", 2);
-  s += attr("stress", "Matrix", 4);
+  s += attr("displacement", "Vector", dim);
+  s += attr("velocity", "Vector", dim);
+  s += attr("stress", "Matrix", dim == 3 ? NStress<3> : NStress<2>);
   s += attr("volume", "Scalar", 1);
   s += attr("material", "Scalar", 1);
   s += attr("eps_p", "Scalar", 1);
@@ -108,13 +109,14 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
   PetscViewer v;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_output, 0, 0, 0, 0));
+  const int D = sim.parts.dim, NS = D == 3 ? NStress<3> : NStress<2>;
   const std::string path = sim.set.output_dir + "/" + h5name;
   PetscCall(ParticlesGetView(sim.parts, P));
   const PetscInt n = P.n;
   // The fields that are not stored go through the step's scratch (L dt per particle between G2P
   // and the stress update, free between steps): no new memory.
   std::vector<double> &derived = sim.scratch.dudx;
-  derived.resize(std::max(derived.size(), static_cast<size_t>(n * DIM)));
+  derived.resize(std::max(derived.size(), static_cast<size_t>(n * D)));
   PetscCall(PetscViewerHDF5Open(sim.comm, (path + ".tmp").c_str(), FILE_MODE_WRITE, &v));
   PetscCall(PetscViewerHDF5PushGroup(v, "/particles"));
   hid_t fid, gid;
@@ -122,21 +124,21 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
   // every rank writes its own particles' rows of each dataset, in one collective MPI-IO call (a
   // parallel file system's fast path): nothing is gathered on one rank (parallel_h5.hpp)
 
-  PetscCall(WriteRowsCollective(sim.comm, gid, "position", n, DIM, P.x));
-  PetscCall(WriteRowsCollective(sim.comm, gid, "position0", n, DIM, P.x0));
-  for (PetscInt i = 0; i < n * DIM; ++i) derived[i] = P.x[i] - P.x0[i];
-  PetscCall(WriteRowsCollective(sim.comm, gid, "displacement", n, DIM, derived.data()));
-  PetscCall(WriteRowsCollective(sim.comm, gid, "velocity", n, DIM, P.v));
-  PetscCall(WriteRowsCollective(sim.comm, gid, "stress", n, NSTRESS, P.stress));
-  PetscCall(WriteRowsCollective(sim.comm, gid, "F", n, DIM * DIM, P.F));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "position", n, D, P.x));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "position0", n, D, P.x0));
+  for (PetscInt i = 0; i < n * D; ++i) derived[i] = P.x[i] - P.x0[i];
+  PetscCall(WriteRowsCollective(sim.comm, gid, "displacement", n, D, derived.data()));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "velocity", n, D, P.v));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "stress", n, NS, P.stress));
+  PetscCall(WriteRowsCollective(sim.comm, gid, "F", n, D * D, P.F));
   PetscCall(WriteRowsCollective(sim.comm, gid, "volume", n, 1, P.vol));
   PetscCall(WriteRowsCollective(sim.comm, gid, "volume0", n, 1, P.vol0));
   if (sim.set.shape == ShapeKind::CPGIMP) { // the block the weights see: cpGIMP's deformed one
     for (PetscInt p = 0; p < n; ++p)
-      CPGIMPShape::half(P.lp + p * DIM, P.F + p * DIM * DIM, &derived[p * DIM]);
-    PetscCall(WriteRowsCollective(sim.comm, gid, "halfsize", n, DIM, derived.data()));
+      CPGIMPShape::half(P.lp + p * D, P.F + p * D * D, &derived[p * D]);
+    PetscCall(WriteRowsCollective(sim.comm, gid, "halfsize", n, D, derived.data()));
   } else
-    PetscCall(WriteRowsCollective(sim.comm, gid, "halfsize", n, DIM, P.lp));
+    PetscCall(WriteRowsCollective(sim.comm, gid, "halfsize", n, D, P.lp));
   PetscCall(WriteRowsCollective(sim.comm, gid, "mass", n, 1, P.mass));
   PetscCall(WriteRowsCollective(sim.comm, gid, "eps_p", n, 1, P.eps_p));
   PetscCall(WriteRowsCollective(sim.comm, gid, "colour", n, 1, P.colour));
@@ -161,9 +163,9 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
     std::fprintf(f,
                  "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n  <Domain>\n%s"
                  "  </Domain>\n</Xdmf>\n",
-                 XdmfText(base, ntot, sim.run.time).c_str());
+                 XdmfText(base, ntot, sim.run.time, D).c_str());
     std::fclose(f);
-    if (h5name.rfind("series/", 0) == 0) g_series.push_back(XdmfText(base, ntot, sim.run.time));
+    if (h5name.rfind("series/", 0) == 0) g_series.push_back(XdmfText(base, ntot, sim.run.time, D));
   }
   PetscCall(PetscLogEventEnd(ev_output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -233,17 +235,20 @@ PetscErrorCode OutputSummary(Simulation &sim, const std::string &results,
     // iterations)
     std::string solver = "\"solver\": \"" + s.solver + "\",\n  " + sim.solver->report();
     iface = solver + iface;
+    std::string cells =
+        std::to_string(sim.model.ncell[0]) + ", " + std::to_string(sim.model.ncell[1]);
+    if (s.dim == 3) cells += ", " + std::to_string(sim.grid3.ncell[2]); // -depth's cells
     std::fprintf(
         f,
         "{\n  \"scene\": \"%s\",\n  \"ranks\": %d,\n  \"particles\": %d,\n"
-        "  \"cells\": [%d, %d],\n  %s,\n  \"ppc\": %d,\n  \"shape\": \"%s\",\n"
+        "  \"cells\": [%s],\n  %s,\n  \"ppc\": %d,\n  \"shape\": \"%s\",\n"
         "  \"cfl\": %s,\n  \"steps\": %d,\n  \"time\": %s,\n  %s,\n"
         "  \"converged\": %s,\n  %s,\n  \"tolerance\": %s,\n  \"migrations\": %d,\n"
         "  %s,\n  %s%s,\n  \"results\": {\n    %s\n  }\n}\n",
-        s.scene.c_str(), sim.size, (int)n, (int)sim.model.ncell[0], (int)sim.model.ncell[1],
-        json_kv("h", s.h).c_str(), (int)s.ppc, ShapeKindNames[(int)s.shape],
-        json_num(s.cfl).c_str(), (int)sim.run.step, json_num(sim.run.time).c_str(),
-        json_kv("wall_seconds", sim.run.wall_seconds).c_str(), sim.run.converged ? "true" : "false",
+        s.scene.c_str(), sim.size, (int)n, cells.c_str(), json_kv("h", s.h).c_str(), (int)s.ppc,
+        ShapeKindNames[(int)s.shape], json_num(s.cfl).c_str(), (int)sim.run.step,
+        json_num(sim.run.time).c_str(), json_kv("wall_seconds", sim.run.wall_seconds).c_str(),
+        sim.run.converged ? "true" : "false",
         json_kv("unbalanced_force_ratio", sim.run.ratio).c_str(), json_num(s.tol).c_str(),
         (int)sim.run.migrations, partition.c_str(), iface.c_str(), design.c_str(), results.c_str());
     std::fclose(f);

@@ -265,29 +265,37 @@ PetscErrorCode BalanceRun(Simulation &sim) {
 }
 
 PetscErrorCode PartitionJson(Simulation &sim, std::string &json) {
-  PetscInt px, py, n;
-  const PetscInt *lx, *ly;
+  PetscInt p[3] = {1, 1, 1}, n;
+  const PetscInt *l[3] = {nullptr, nullptr, nullptr};
   PetscFunctionBeginUser;
-  PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr, nullptr,
+  const int D = static_cast<int>(sim.set.dim); // -dim 3: the 3D grid's partition
+  DM da = D == 3 ? sim.grid3.da : sim.grid.da;
+  const PetscInt *ncell = D == 3 ? sim.grid3.ncell : sim.model.ncell;
+  PetscCall(DMDAGetInfo(da, nullptr, nullptr, nullptr, nullptr, &p[0], &p[1], &p[2], nullptr,
                         nullptr, nullptr, nullptr, nullptr, nullptr));
-  PetscCall(DMDAGetOwnershipRanges(sim.grid.da, &lx, &ly, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(da, &l[0], &l[1], D == 3 ? &l[2] : nullptr));
   PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
   std::vector<PetscInt> counts(sim.size);
   PetscCallMPI(MPI_Allgather(&n, 1, MPIU_INT, counts.data(), 1, MPIU_INT, sim.comm));
   const double imbalance = Imbalance(std::vector<double>(counts.begin(), counts.end()));
   const Balance &b = sim.balance;
   const char *sep = ",\n    ";
-  json = "\"partition\": {\n    \"processes\": [" + std::to_string(px) + ", " + std::to_string(py) +
-         "]" + sep + "\"origin\": [" + json_num(sim.model.origin[0]) + ", " +
-         json_num(sim.model.origin[1]) + "]" + sep +
-         "\"nodes_x\": " + json_array(std::vector<PetscInt>(lx, lx + px)) + sep +
-         "\"nodes_y\": " + json_array(std::vector<PetscInt>(ly, ly + py)) + sep +
-         "\"cell_bounds_x\": " + json_array(CellBounds(lx, px, sim.model.ncell[0])) + sep +
-         "\"cell_bounds_y\": " + json_array(CellBounds(ly, py, sim.model.ncell[1])) + sep +
-         "\"particles_per_rank\": " + json_array(counts) + sep + json_kv("imbalance", imbalance) +
-         "\n  },\n  \"balance\": {\n    \"mode\": \"" + BalanceModeNames[(int)b.mode] + "\"" + sep +
-         json_kv("gain", b.gain) + sep + json_kv("imbalance_before", b.before) + sep +
-         json_kv("imbalance_after", b.after) + sep +
+  const char *axis[3] = {"x", "y", "z"};
+  std::string procs, origin, ranges;
+  for (int d = 0; d < D; ++d) {
+    procs += (d ? ", " : "") + std::to_string(p[d]);
+    origin += (d ? ", " : "") + json_num(d < DIM ? sim.model.origin[d] : sim.grid3.origin[d]);
+    ranges += std::string("\"nodes_") + axis[d] +
+              "\": " + json_array(std::vector<PetscInt>(l[d], l[d] + p[d])) + sep;
+  }
+  for (int d = 0; d < D; ++d)
+    ranges += std::string("\"cell_bounds_") + axis[d] +
+              "\": " + json_array(CellBounds(l[d], p[d], ncell[d])) + sep;
+  json = "\"partition\": {\n    \"processes\": [" + procs + "]" + sep + "\"origin\": [" + origin +
+         "]" + sep + ranges + "\"particles_per_rank\": " + json_array(counts) + sep +
+         json_kv("imbalance", imbalance) + "\n  },\n  \"balance\": {\n    \"mode\": \"" +
+         BalanceModeNames[(int)b.mode] + "\"" + sep + json_kv("gain", b.gain) + sep +
+         json_kv("imbalance_before", b.before) + sep + json_kv("imbalance_after", b.after) + sep +
          json_kv("rebuilt", b.rebuilt ? "true" : "false") + sep + json_kv("seconds", b.seconds) +
          sep + json_kv("threshold", b.threshold) + sep +
          json_kv("rebalances", static_cast<double>(b.rebalances)) + sep +

@@ -159,6 +159,34 @@ PetscErrorCode CheckMemoryParticles(Simulation &sim, const MemoryCheck &m, Petsc
   PetscFunctionReturn(0);
 }
 
+namespace {
+// -dim 3 (extrude.hpp): per node, the coordinates (3 doubles, global and local) and the maps; per
+// particle the swarm's fields (33 doubles: x x0 v lp 12, mass vol vol0 weight 4, stress 6, F 9,
+// eps_p colour 2; 4 PetscInt; DMSwarm's 16 B) and the setup's transient (the extruded list while
+// the swarm grows: at most one copy of it beside the swarm).
+constexpr double kGridBytesPerNode3 = 2 * 3 * 8 + 16;
+constexpr double kParticleBytes3 = 33 * 8 + 4 * sizeof(PetscInt) + 16 + sizeof(ParticleInitT<3>);
+} // namespace
+
+PetscErrorCode CheckMemoryExtruded(Simulation &sim, const MemoryCheck &m, PetscInt nz,
+                                   PetscInt nlocal) {
+  PetscFunctionBeginUser;
+  const double per_node = 2.0 * 8 * GridDofT<3>::NDOF + kGridBytesPerNode3;
+  if (nlocal == 0) {
+    const double nodes =
+        (double)(sim.model.ncell[0] + 1) * (double)(sim.model.ncell[1] + 1) * (double)(nz + 1);
+    PetscCall(CompareWithNodes(sim, m, kRankBaseBytes + nodes / sim.size * per_node,
+                               "the 3D grid alone"));
+  } else {
+    const GridT<3> &g = sim.grid3;
+    const double nodes = (double)g.gm[0] * g.gm[1] * g.gm[2];
+    PetscCall(CompareWithNodes(sim, m,
+                               kRankBaseBytes + nodes * per_node + (double)nlocal * kParticleBytes3,
+                               "the 3D grid and particles"));
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode CheckProcessGrid(Simulation &sim) {
   const char *names[DIM] = {"-da_processors_x", "-da_processors_y"};
   PetscInt np[DIM] = {0, 0};

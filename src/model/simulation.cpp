@@ -2,6 +2,7 @@
 #include "pmpm/util/options.hpp"
 #include "pmpm/model/simulation.hpp"
 #include "pmpm/materials/registry.hpp"
+#include "pmpm/model/extrude.hpp"
 #include "pmpm/model/prerun.hpp"
 #include <algorithm>
 #include <cmath>
@@ -182,6 +183,14 @@ PetscErrorCode SolverOptions(PetscOptionItems *PetscOptionsObject, Settings &s) 
                             "-fbar)",
                             nullptr, GeometryNames, (PetscEnum)s.geometry, (PetscEnum *)&s.geometry,
                             nullptr));
+  PetscCall(PmpmOptionsInt("-dim",
+                           "Dimension: 2 (the scene's plane) or 3 (the scene extruded along z "
+                           "over -depth; relaxation only; extrude.hpp)",
+                           nullptr, s.dim, &s.dim, nullptr));
+  PetscCall(PmpmOptionsReal("-depth",
+                            "-dim 3: the depth (m) the 2D scene is extruded over along z, a whole "
+                            "number of cells (z faces: -bc_zmin, -bc_zmax)",
+                            nullptr, s.depth, &s.depth, nullptr));
   PetscFunctionReturn(0);
 }
 
@@ -190,6 +199,8 @@ PetscErrorCode CheckSettings(MPI_Comm comm, Settings &s, PetscBool restart_given
   const PetscBool set = restart_given;
   PetscFunctionBeginUser;
   PmpmCheckInput(s.h > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-cell_size must be > 0 (got %g)", s.h);
+  PmpmCheckInput(s.dim == 2 || s.dim == 3, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-dim must be 2 or 3 (got %" PetscInt_FMT ")", s.dim);
   if (!(s.h > 0)) s.h = 1; // -help without a cell size: the scenes' lengths in cells stay finite
   PmpmCheckInput(s.ppc >= 1 && s.ppc <= 8, comm, PETSC_ERR_ARG_OUTOFRANGE,
                  "-ppc must be in 1..8 (got %" PetscInt_FMT ")", s.ppc);
@@ -313,7 +324,7 @@ PetscErrorCode SimulationIndexParticles(Simulation &sim) {
     sim.mat_idx[P.mat[p]].push_back(static_cast<int>(p));
     if (P.load[p] >= 0) sim.traction_idx.push_back(p);
   }
-  sim.scratch.dudx.resize(static_cast<size_t>(P.n) * DIM * DIM);
+  sim.scratch.dudx.resize(static_cast<size_t>(P.n) * sim.parts.dim * sim.parts.dim);
   if (sim.set.geometry == Geometry::Axisymmetric)
     sim.scratch.hoop.resize(static_cast<size_t>(P.n) * 2);
   PetscCall(ParticlesRestoreView(sim.parts, P));
@@ -321,7 +332,7 @@ PetscErrorCode SimulationIndexParticles(Simulation &sim) {
 }
 
 namespace {
-const char *const kFaceNames[2 * DIM] = {"xmin", "xmax", "ymin", "ymax"};
+const char *const kFaceNames[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
 
 // Box-face boundary conditions: the scene's defaults, overridable per face.
 PetscErrorCode BoundaryFromOptions(Simulation &sim) {
@@ -345,6 +356,16 @@ PetscErrorCode BoundaryFromOptions(Simulation &sim) {
     PmpmCheckInput(!set || n == DIM, sim.comm, PETSC_ERR_USER_INPUT,
                    "-bc_%s_traction needs %d components, got %" PetscInt_FMT, kFaceNames[f], DIM,
                    n);
+  }
+  for (int f = 2 * DIM; f < 6; ++f) { // -dim 3's z faces: conditions only
+    char opt[32], help[160];
+    snprintf(opt, sizeof(opt), "-%s", kFaceNames[f]);
+    snprintf(help, sizeof(help),
+             "-dim 3: the %s face's condition: free, roller (normal velocity 0; the default: "
+             "plane strain), fixed",
+             kFaceNames[f]);
+    PetscCall(PmpmOptionsEnum(opt, help, nullptr, FaceBCNames, (PetscEnum)sim.model.face[f],
+                              (PetscEnum *)&sim.model.face[f], nullptr));
   }
   PetscOptionsEnd();
   for (int f = 0; f < 2 * DIM; ++f)
@@ -727,7 +748,11 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
     PetscCall(SolverSetup(sim, true));
     PetscFunctionReturn(0);
   }
-  PetscCall(GridAndParticles(sim, mem, nbody, nchain));
+  PetscCall(ExtrusionCheck(sim));
+  if (sim.set.dim == 3)
+    PetscCall(ExtrudedGridAndParticles(sim, mem));
+  else
+    PetscCall(GridAndParticles(sim, mem, nbody, nchain));
   PetscCall(SolverSetup(sim, false));
   // Step 0: monitor() also sees the initial state, where scenes may set an initial velocity field.
   PetscCall(sim.scene->monitor(sim));
@@ -741,6 +766,7 @@ PetscErrorCode SimulationDestroy(Simulation &sim) {
   PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
   PetscCall(InterfaceGridDestroy(sim.iface_grid));
   PetscCall(GridDestroy(sim.grid));
+  PetscCall(GridDestroy(sim.grid3));
   PetscFunctionReturn(0);
 }
 

@@ -47,6 +47,7 @@ class ColumnScene final : public Scene {
   }
 
 public:
+  bool extrudes() const override { return true; } // CompareVertical reads any dimension
   PetscErrorCode setup(Simulation &sim) override {
     PetscBool w_set = PETSC_FALSE;
     PetscFunctionBeginUser;

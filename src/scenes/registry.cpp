@@ -53,6 +53,13 @@ std::string SceneList() {
   return s;
 }
 
+std::string ExtrudingScenes() {
+  std::string s;
+  for (const SceneEntry &e : Scenes())
+    if (e.make()->extrudes()) s += (s.empty() ? "" : ", ") + std::string(e.name);
+  return s;
+}
+
 std::unique_ptr<Scene> make_scene(const std::string &name) {
   for (const SceneEntry &e : Scenes())
     if (name == e.name) return e.make();

@@ -31,22 +31,6 @@ void FillRegular(const Simulation &sim, const MaterialAt &at, ParticleList &out)
         }
 }
 
-PetscErrorCode CheckCells(MPI_Comm comm, const char *option, double length, double h,
-                          PetscInt *cells) {
-  PetscFunctionBeginUser;
-  const double r = length / h;
-  PmpmCheckInput(length > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be > 0 (got %g)", option,
-                 length);
-  PmpmCheckInput(
-      std::fabs(r - std::round(r)) < 1e-6 * std::fmax(1.0, r) && std::round(r) >= 1, comm,
-      PETSC_ERR_ARG_OUTOFRANGE,
-      "%s = %g m is not a whole number (>= 1) of cells of -cell_size %g m: the grid is too "
-      "coarse for the body or misaligned with it",
-      option, length, h);
-  *cells = static_cast<PetscInt>(std::round(r));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode CompareVertical(Simulation &sim, const std::function<double(double)> &sigma_yy,
                                const std::function<double(double)> &u_y,
                                const std::vector<double> &rows, VerticalComparison &out) {
@@ -57,10 +41,11 @@ PetscErrorCode CompareVertical(Simulation &sim, const std::function<double(doubl
   std::vector<double> s(4 + 3 * nr, 0.0);
   const double tol = 1e-9 * (rows.empty() ? 1.0 : std::fabs(rows.back()));
   PetscCall(ParticlesGetView(sim.parts, P));
+  const int D = sim.parts.dim, NS = D == 3 ? NStress<3> : NSTRESS; // -dim 3: extruded
   for (PetscInt p = 0; p < P.n; ++p) {
-    const double Y = P.x0[p * DIM + 1], V0 = P.vol0[p], l = P.lp[p * DIM + 1];
-    const double u = P.x[p * DIM + 1] - Y, ue = u_y(Y);
-    const double se = sigma_yy(Y), sy = P.stress[p * NSTRESS + 1];
+    const double Y = P.x0[p * D + 1], V0 = P.vol0[p], l = P.lp[p * D + 1];
+    const double u = P.x[p * D + 1] - Y, ue = u_y(Y);
+    const double se = sigma_yy(Y), sy = P.stress[p * NS + 1];
     s[0] += (sy - se) * (sy - se) * V0;
     s[1] += se * se * V0;
     s[2] += (u - ue) * (u - ue) * V0;

@@ -36,9 +36,10 @@ PetscErrorCode ZeroParticleVelocities(Simulation &sim) {
   ParticleView P;
   PetscFunctionBeginUser;
   PetscCall(ParticlesGetView(sim.parts, P));
-  for (PetscInt q = 0; q < P.n * DIM; ++q) P.v[q] = 0.0;
+  const int D = sim.parts.dim;
+  for (PetscInt q = 0; q < P.n * D; ++q) P.v[q] = 0.0;
   if (P.B) // -transfer apic: the affine part too
-    for (PetscInt q = 0; q < P.n * DIM * DIM; ++q) P.B[q] = 0.0;
+    for (PetscInt q = 0; q < P.n * D * D; ++q) P.B[q] = 0.0;
   PetscCall(ParticlesRestoreView(sim.parts, P));
   for (Chain &c : sim.chains) std::fill(c.v.begin(), c.v.end(), 0.0);
   PetscFunctionReturn(0);
@@ -89,9 +90,11 @@ double ChainsElasticEnergy(const Simulation &sim) {
 // kept), each material with its own E and nu (elastic_energy, material.hpp); and the chains'.
 double ElasticEnergy(const Simulation &sim, const ParticleView &P) {
   double u = 0;
+  const bool three = sim.parts.dim == 3;
   for (PetscInt p = 0; p < P.n; ++p) {
     const ElasticConstants &c = sim.model.mats[P.mat[p]].el;
-    u += elastic_energy(c.E, c.nu, P.vol[p], P.stress + p * NSTRESS);
+    u += three ? elastic_energy<3>(c.E, c.nu, P.vol[p], P.stress + p * NStress<3>)
+               : elastic_energy(c.E, c.nu, P.vol[p], P.stress + p * NSTRESS);
   }
   return u + ChainsElasticEnergy(sim);
 }
@@ -104,9 +107,10 @@ PetscErrorCode EnergyBudgetInit(Simulation &sim, RelaxationState &st) {
   double s[2] = {0, 0};
   PetscFunctionBeginUser;
   PetscCall(ParticlesGetView(sim.parts, P));
+  const int D = sim.parts.dim;
   for (PetscInt p = 0; p < P.n; ++p) {
-    const double *v = P.v + p * DIM;
-    s[0] += 0.5 * P.mass[p] * (v[0] * v[0] + v[1] * v[1]);
+    const double *v = P.v + p * D;
+    s[0] += 0.5 * P.mass[p] * (v[0] * v[0] + v[1] * v[1] + (D == 3 ? v[2] * v[2] : 0.0));
     s[1] += sim.wave_modulus[P.mat[p]] * P.vol[p];
   }
   const double u = ElasticEnergy(sim, P); // a later stage starts from a loaded state
@@ -131,13 +135,15 @@ PetscErrorCode FastestParticle(Simulation &sim, double info[4]) {
   } loc = {-1.0, sim.rank}, glob;
   PetscFunctionBeginUser;
   PetscCall(ParticlesGetView(sim.parts, P));
+  const int D = sim.parts.dim;
   for (PetscInt p = 0; p < P.n; ++p) {
-    const double *v = P.v + p * DIM, sp = std::hypot(v[0], v[1]);
+    const double *v = P.v + p * D,
+                 sp = D == 3 ? std::hypot(v[0], v[1], v[2]) : std::hypot(v[0], v[1]);
     if (sp > loc.v || !std::isfinite(sp)) {
       loc.v = std::isfinite(sp) ? sp : 1e300;
       info[0] = static_cast<double>(P.pid[p]);
-      info[1] = P.x[p * DIM];
-      info[2] = P.x[p * DIM + 1];
+      info[1] = P.x[p * D];
+      info[2] = P.x[p * D + 1];
       info[3] = sp;
     }
   }

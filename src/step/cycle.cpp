@@ -14,46 +14,71 @@ namespace pmpm {
 StepEvents step_events;
 
 namespace {
+// The grid the step runs on: the 2D grid, or -dim 3's (extrude.hpp).
+template <int D> GridT<D> &StepGrid(Simulation &sim) {
+  if constexpr (D == 3)
+    return sim.grid3;
+  else
+    return sim.grid;
+}
+// The hooks run in 2D; -dim 3 refuses every scene or option that would activate one
+// (ExtrusionCheck), so in 3D there is nothing to call.
+template <int D>
+PetscErrorCode Hooks(const ActiveHooks &h, PetscErrorCode (*StepHook::*member)(StepState &),
+                     StepStateT<D> &S) {
+  PetscFunctionBeginUser;
+  if constexpr (D == DIM)
+    PetscCall(RunHooks(h, member, S));
+  else
+    PetscCheck(h.n == 0, S.sim.comm, PETSC_ERR_SUP,
+               "-dim 3 does not run %s yet (step %" PetscInt_FMT ")", h.hook[0]->name,
+               S.sim.run.step);
+  PetscFunctionReturn(0);
+}
+
 // 1. Particles to grid: mass, momentum, internal and external force (eq. 7-9, 14); then the
 //    hooks' own nodal values (1a chains, 1b the interface's body).
-template <class Shape> PetscErrorCode ParticlesToGrid(StepState &S, const ActiveHooks &h) {
+template <class Shape, int D>
+PetscErrorCode ParticlesToGrid(StepStateT<D> &S, const ActiveHooks &h) {
   Simulation &sim = S.sim;
-  GridView G;
+  GridViewT<D> G;
   PetscFunctionBeginUser;
   {
     PmpmLogEventScope(step_events.p2g);
-    PetscCall(GridGetLocal(sim.grid, true, G));
+    PetscCall(GridGetLocal(StepGrid<D>(sim), true, G));
     p2g<Shape>(S.P, S.load, G, nullptr, 0, S.pshift);
-    if (!sim.traction_idx.empty())
-      p2g_traction<Shape>(S.P, sim.model.loads, sim.traction_idx, S.load.factor, G);
-    PetscCall(GridRestoreLocal(sim.grid, G));
+    if constexpr (D == DIM)
+      if (!sim.traction_idx.empty())
+        p2g_traction<Shape>(S.P, sim.model.loads, sim.traction_idx, S.load.factor, G);
+    PetscCall(GridRestoreLocal(StepGrid<D>(sim), G));
   }
-  PetscCall(RunHooks(h, &StepHook::p2g, S));
+  PetscCall(Hooks(h, &StepHook::p2g, S));
   PetscFunctionReturn(0);
 }
 
 // 2. Sum the ghost contributions across ranks (2b: what the hooks need of the sums).
-PetscErrorCode GhostAdd(StepState &S, const ActiveHooks &h) {
+template <int D> PetscErrorCode GhostAdd(StepStateT<D> &S, const ActiveHooks &h) {
   PetscFunctionBeginUser;
   {
     PmpmLogEventScope(step_events.l2g);
-    PetscCall(GridLocalToGlobalAdd(S.sim.grid));
-    PetscCall(RunHooks(h, &StepHook::ghost_add, S));
+    PetscCall(GridLocalToGlobalAdd(StepGrid<D>(S.sim)));
+    PetscCall(Hooks(h, &StepHook::ghost_add, S));
   }
-  PetscCall(RunHooks(h, &StepHook::after_ghost_add, S));
+  PetscCall(Hooks(h, &StepHook::after_ghost_add, S));
   PetscFunctionReturn(0);
 }
 
 // 3. Nodal momentum balance with damping and boundary conditions (eq. 1-2); then the hooks' own
 //    (3a the chains' contact, 3b the interface).
-PetscErrorCode GridMomentum(StepState &S, const FireMix &fire, const ActiveHooks &h) {
+template <int D>
+PetscErrorCode GridMomentum(StepStateT<D> &S, const FireMix &fire, const ActiveHooks &h) {
   Simulation &sim = S.sim;
-  GridUpdateParams &gp = S.gp;
+  GridUpdateParamsT<D> &gp = S.gp;
   PetscFunctionBeginUser;
   gp.dt = S.dt;
   const bool local = sim.set.damping == Damping::Local || sim.set.damping == Damping::Both;
   gp.damping_alpha = local ? sim.set.damping_alpha : 0.0;
-  for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.model.face[f];
+  for (int f = 0; f < 2 * D; ++f) gp.face[f] = sim.model.face[f];
   gp.prescribed = &sim.prescribed;
   if (fire.on) {
     gp.fire = true;
@@ -62,29 +87,29 @@ PetscErrorCode GridMomentum(StepState &S, const FireMix &fire, const ActiveHooks
   }
   {
     PmpmLogEventScope(step_events.grid);
-    PetscCall(GridGetGlobal(sim.grid, S.G));
-    grid_update(S.G, gp, S.rep.grid);
+    PetscCall(GridGetGlobal(StepGrid<D>(sim), S.G));
+    grid_update(S.G, gp, S.grid_stats);
   }
-  PetscCall(RunHooks(h, &StepHook::grid_update, S));
-  PetscCall(GridRestoreGlobal(sim.grid, S.G));
+  PetscCall(Hooks(h, &StepHook::grid_update, S));
+  PetscCall(GridRestoreGlobal(StepGrid<D>(sim), S.G));
   PetscFunctionReturn(0);
 }
 
 // 4. New nodal velocities and accelerations to the ghosts.
-PetscErrorCode GhostScatter(StepState &S, const ActiveHooks &h) {
+template <int D> PetscErrorCode GhostScatter(StepStateT<D> &S, const ActiveHooks &h) {
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.g2l);
-  PetscCall(GridGlobalToLocal(S.sim.grid));
-  PetscCall(RunHooks(h, &StepHook::ghost_scatter, S));
+  PetscCall(GridGlobalToLocal(StepGrid<D>(S.sim)));
+  PetscCall(Hooks(h, &StepHook::ghost_scatter, S));
   PetscFunctionReturn(0);
 }
 
 // MUSL: the updated particle momenta mapped back to the grid, and the kinematics taken from that
 // remapped velocity.
-template <class Shape> PetscErrorCode MuslRemap(StepState &S) {
+template <class Shape, int D> PetscErrorCode MuslRemap(StepStateT<D> &S) {
   Simulation &sim = S.sim;
-  Grid &g = sim.grid;
-  GridView G;
+  GridT<D> &g = StepGrid<D>(sim);
+  GridViewT<D> G;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.musl);
   PetscCall(GridGetLocal(g, true, G));
@@ -96,8 +121,8 @@ template <class Shape> PetscErrorCode MuslRemap(StepState &S) {
   PetscCall(GridRestoreGlobal(g, G));
   PetscCall(GridGlobalToLocal(g));
   PetscCall(GridGetLocal(g, false, G));
-  g2p_kinematics<Shape>(S.P, G, S.G1, g, S.pp, sim.wave_modulus.data(), sim.scratch.dudx.data(),
-                        S.rep.g2p);
+  g2p_kinematics<Shape, D>(S.P, G, S.G1, owned_cells(g), S.pp, sim.wave_modulus.data(),
+                           sim.scratch.dudx.data(), S.g2p_stats);
   PetscCall(GridRestoreLocal(g, G));
   PetscFunctionReturn(0);
 }
@@ -105,44 +130,45 @@ template <class Shape> PetscErrorCode MuslRemap(StepState &S) {
 // 5. Grid to particles: velocity (eq. 4), position (eq. 5), velocity gradient (eq. 20), F,
 //    volume; with `elastic` (the fused step 6) the stress too. USL reads one nodal field in one
 //    pass; MUSL remaps first. Then the hooks (5' F-bar, 5a the chains' points).
-template <class Shape>
-PetscErrorCode GridToParticles(StepState &S, const ActiveHooks &h, const double *elastic) {
+template <class Shape, int D>
+PetscErrorCode GridToParticles(StepStateT<D> &S, const ActiveHooks &h, const double *elastic) {
   Simulation &sim = S.sim;
-  G2PParams &pp = S.pp;
-  GridView G;
+  GridT<D> &g = StepGrid<D>(sim);
+  G2PParamsT<D> &pp = S.pp;
+  GridViewT<D> G;
   std::vector<double> energy;
   PetscFunctionBeginUser;
   pp.dt = S.dt;
   pp.pic = sim.set.pic;
-  for (int d = 0; d < DIM; ++d) pp.gdir[d] = S.load.gdir[d];
+  for (int d = 0; d < D; ++d) pp.gdir[d] = S.load.gdir[d];
   pp.elastic = elastic;
   pp.hoop = sim.scratch.hoop.empty() ? nullptr : sim.scratch.hoop.data(); // -geometry axisymmetric
   if (elastic && sim.step_energy) { // relaxation's energy check: G2P sums the elastic energy
     for (const auto &m : sim.model.mats) energy.insert(energy.end(), {m.el.E, m.el.nu});
     pp.energy = energy.data();
   }
-  PetscCall(RunHooks(h, &StepHook::before_g2p, S));
+  PetscCall(Hooks(h, &StepHook::before_g2p, S));
   {
     PmpmLogEventScope(step_events.g2p);
-    PetscCall(GridGetLocal(sim.grid, false, G));
+    PetscCall(GridGetLocal(g, false, G));
     if (!sim.set.musl)
-      g2p<Shape>(S.P, G, S.G1, sim.grid, pp, sim.wave_modulus.data(), sim.scratch.dudx.data(),
-                 S.rep.g2p);
+      g2p<Shape, D>(S.P, G, S.G1, owned_cells(g), pp, sim.wave_modulus.data(),
+                    sim.scratch.dudx.data(), S.g2p_stats);
     else
       g2p_velocity<Shape>(S.P, G, S.G1, pp);
-    PetscCall(GridRestoreLocal(sim.grid, G));
+    PetscCall(GridRestoreLocal(g, G));
   }
   if (sim.set.musl) PetscCall(MuslRemap<Shape>(S));
-  PetscCall(RunHooks(h, &StepHook::after_g2p, S));
+  PetscCall(Hooks(h, &StepHook::after_g2p, S));
   PetscFunctionReturn(0);
 }
 
 // 6 is fused into 5 when every material is linear elastic in rate form and no hook reads the
 // velocity gradient in between (F-bar) or subtracts from it (an eigenstrain): the materials'
-// (E, nu) pairs for G2P, or false.
+// (E, nu) pairs for G2P, or false. Plane strain only (elastic_rate_update, transfers.cpp).
 bool FusedStress(const Simulation &sim, const ActiveHooks &h, std::vector<double> &elastic) {
   elastic.resize(2 * sim.model.mats.size());
-  bool fuse = !h.reads_gradient;
+  bool fuse = !h.reads_gradient && sim.set.dim == 2;
   for (size_t m = 0; fuse && m < sim.model.mats.size(); ++m)
     fuse = sim.model.mats[m].model->linear_elastic_rate(elastic[2 * m], elastic[2 * m + 1]);
   return fuse;
@@ -150,25 +176,25 @@ bool FusedStress(const Simulation &sim, const ActiveHooks &h, std::vector<double
 
 // 6. Stress update, one batch per material (eq. 6), less any imposed eigenstrain (its hook).
 //    (Done in step 5 when fused: the event then stays empty, G2P holds the time.)
-PetscErrorCode StressUpdate(StepState &S, const ActiveHooks &h, bool fused) {
+template <int D> PetscErrorCode StressUpdate(StepStateT<D> &S, const ActiveHooks &h, bool fused) {
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.stress);
-  PetscCall(RunHooks(h, &StepHook::stress, S));
+  PetscCall(Hooks(h, &StepHook::stress, S));
   if (!fused)
     UpdateStresses(S.sim, S.sim.scratch.dudx.data(), S.P.F, S.P.stress, S.P.eps_p, S.eigen);
   PetscFunctionReturn(0);
 }
 
-template <class Shape>
-PetscErrorCode StepWith(StepState &S, const FireMix &fire, const ActiveHooks &h) {
+template <class Shape, int D>
+PetscErrorCode StepWith(StepStateT<D> &S, const FireMix &fire, const ActiveHooks &h) {
   std::vector<double> elastic;
   PetscFunctionBeginUser;
   PetscCall(ParticlesGetView(S.sim.parts, S.P));
-  PetscCall(RunHooks(h, &StepHook::before_p2g, S)); // 0. (F-bar's groups)
-  PetscCall(ParticlesToGrid<Shape>(S, h));          // 1.
-  PetscCall(GhostAdd(S, h));                        // 2.
-  PetscCall(GridMomentum(S, fire, h));              // 3.
-  PetscCall(GhostScatter(S, h));                    // 4.
+  PetscCall(Hooks(h, &StepHook::before_p2g, S)); // 0. (F-bar's groups)
+  PetscCall(ParticlesToGrid<Shape>(S, h));       // 1.
+  PetscCall(GhostAdd(S, h));                     // 2.
+  PetscCall(GridMomentum(S, fire, h));           // 3.
+  PetscCall(GhostScatter(S, h));                 // 4.
   const bool fused = FusedStress(S.sim, h, elastic);
   PetscCall(GridToParticles<Shape>(S, h, fused ? elastic.data() : nullptr)); // 5.
   PetscCall(StressUpdate(S, h, fused));                                      // 6.
@@ -250,9 +276,74 @@ PetscErrorCode BadParticle(Simulation &sim, const StepReport &rep, int who) {
 PetscErrorCode Migrate(Simulation &sim) {
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.migrate);
-  PetscCall(ParticlesMigrate(sim.parts));
+  if (sim.set.dim == 3)
+    PetscCall(ParticlesMigrate(sim.parts, sim.grid3));
+  else
+    PetscCall(ParticlesMigrate(sim.parts));
   PetscCall(SimulationIndexParticles(sim));
   ++sim.run.migrations;
+  PetscFunctionReturn(0);
+}
+// Phases 0-6 in dimension D, the shape chosen at compile time.
+template <int D>
+PetscErrorCode StepPhases(StepStateT<D> &S, const FireMix &fire, const ActiveHooks &h) {
+  PetscFunctionBeginUser;
+  switch (S.sim.set.shape) {
+  case ShapeKind::Linear:
+    PetscCall(StepWith<LinearShape>(S, fire, h));
+    break;
+  case ShapeKind::UGIMP:
+    PetscCall(StepWith<UGIMPShape>(S, fire, h));
+    break;
+  case ShapeKind::CPGIMP:
+    PetscCall(StepWith<CPGIMPShape>(S, fire, h));
+    break;
+  }
+  PetscFunctionReturn(0);
+}
+
+// -dim 3: the step in 3D, its statistics handed on in the report's 2D form (the z components
+// of the node and the particle that report a problem are kept in the run state: the reduction
+// and the messages read x and y).
+PetscErrorCode StepPhases3(Simulation &sim, const Load &load, double dt, const FireMix &fire,
+                           const ActiveHooks &h, StepReport &rep) {
+  LoadT<3> load3;
+  GridStatsT<3> gs;
+  G2PStatsT<3> ps;
+  PetscFunctionBeginUser;
+  load3.factor = load.factor;
+  load3.shrink = load.shrink;
+  for (int d = 0; d < DIM; ++d) load3.gdir[d] = load.gdir[d];
+  load3.gdir[2] = 0; // the 2D scene's gravity, in its plane
+  StepStateT<3> S(sim, load3, dt, rep, gs, ps);
+  PetscCall(StepPhases(S, fire, h));
+  GridStats &g = rep.grid;
+  g.max_unbalanced = gs.max_unbalanced;
+  g.sum_ext = gs.sum_ext;
+  g.n_ext = gs.n_ext;
+  g.kinetic = gs.kinetic;
+  g.support_power = gs.support_power;
+  g.power = gs.power;
+  g.mv2 = gs.mv2;
+  g.f2m = gs.f2m;
+  G2PStats &p = rep.g2p;
+  p.max_c = ps.max_c;
+  p.max_v = ps.max_v;
+  p.max_speed = ps.max_speed;
+  p.kinetic = ps.kinetic;
+  p.weight_power = ps.weight_power;
+  p.left_rank = ps.left_rank;
+  p.bad = ps.bad;
+  p.bad_pid = ps.bad_pid;
+  p.bad_what = ps.bad_what;
+  p.has_elastic = ps.has_elastic;
+  p.elastic = ps.elastic;
+  for (int d = 0; d < DIM; ++d) {
+    g.max_at[d] = gs.max_at[d];
+    g.support_force[d] = gs.support_force[d];
+    p.bad_x[d] = ps.bad_x[d];
+  }
+  sim.run.local_unbalanced_at[2] = gs.max_at[2];
   PetscFunctionReturn(0);
 }
 } // namespace
@@ -285,18 +376,11 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, const FireMix 
   PetscFunctionBeginUser;
   rep = StepReport{};
   const ActiveHooks h = ActiveStepHooks(sim, load);
-  StepState S(sim, load, dt, rep);
-  switch (sim.set.shape) { // phases 0-6, the shape chosen at compile time
-  case ShapeKind::Linear:
-    PetscCall(StepWith<LinearShape>(S, fire, h));
-    break;
-  case ShapeKind::UGIMP:
-    PetscCall(StepWith<UGIMPShape>(S, fire, h));
-    break;
-  case ShapeKind::CPGIMP:
-    PetscCall(StepWith<CPGIMPShape>(S, fire, h));
-    break;
-  }
+  StepState S(sim, load, dt, rep, rep.grid, rep.g2p);
+  if (sim.set.dim == 3)
+    PetscCall(StepPhases3(sim, load, dt, fire, h, rep)); // 0-6.
+  else
+    PetscCall(StepPhases(S, fire, h));      // 0-6.
   PetscCall(Reduce(sim, rep, &bad, &left)); // 7.
   PetscCall(RunHooks(h, &StepHook::reduce, S));
   if (bad > 0) PetscCall(BadParticle(sim, rep, bad - 1));

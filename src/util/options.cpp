@@ -270,4 +270,20 @@ bool ListingHelp() {
   return help == PETSC_TRUE;
 }
 
+PetscErrorCode CheckCells(MPI_Comm comm, const char *option, double length, double h,
+                          PetscInt *cells) {
+  PetscFunctionBeginUser;
+  const double r = length / h;
+  PmpmCheckInput(length > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be > 0 (got %g)", option,
+                 length);
+  PmpmCheckInput(
+      std::fabs(r - std::round(r)) < 1e-6 * std::fmax(1.0, r) && std::round(r) >= 1, comm,
+      PETSC_ERR_ARG_OUTOFRANGE,
+      "%s = %g m is not a whole number (>= 1) of cells of -cell_size %g m: the grid is too "
+      "coarse for the body or misaligned with it",
+      option, length, h);
+  *cells = static_cast<PetscInt>(std::round(r));
+  PetscFunctionReturn(0);
+}
+
 } // namespace pmpm

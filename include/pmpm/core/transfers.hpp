@@ -36,9 +36,9 @@ template <int D> struct CellRangeT {
     return true;
   }
 };
-inline CellRangeT<DIM> owned_cells(const Grid &g) {
-  CellRangeT<DIM> r;
-  for (int d = 0; d < DIM; ++d) {
+template <int D> inline CellRangeT<D> owned_cells(const GridT<D> &g) {
+  CellRangeT<D> r;
+  for (int d = 0; d < D; ++d) {
     r.lo[d] = g.cell_lo[d];
     r.hi[d] = g.cell_hi[d];
   }

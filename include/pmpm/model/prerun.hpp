@@ -31,6 +31,11 @@ PetscErrorCode CheckMemoryGrid(Simulation &sim, const MemoryCheck &m, int nd, bo
 // (this rank's ghosted nodes) and the particles.
 PetscErrorCode CheckMemoryParticles(Simulation &sim, const MemoryCheck &m, PetscInt nlocal);
 
+// -dim 3 (extrude.hpp), with nz cells along z: before the 3D grid is created (nlocal = 0) the
+// grid alone; after the extrusion, this rank's ghosted nodes and its nlocal particles.
+PetscErrorCode CheckMemoryExtruded(Simulation &sim, const MemoryCheck &m, PetscInt nz,
+                                   PetscInt nlocal);
+
 // A process grid given with -da_processors_x/y that leaves a rank fewer than two nodes in a
 // direction (the stencil width), or does not multiply to the rank count (PETSc would fail on
 // some ranks only, deep in DMSetUp). Before the grid is created.

@@ -70,6 +70,9 @@ struct Settings {
   std::string restart;                       // -restart FILE (empty: a fresh run)
   std::string solver = "relaxation";         // -solver: a name of the solver table (solver.hpp)
   Geometry geometry = Geometry::PlaneStrain; // -geometry (geometry.hpp)
+  // -dim 3: the 2D scene extruded over -depth along z (extrude.hpp); 2: plane strain as before
+  PetscInt dim = 2;
+  double depth = 0;
 };
 
 struct MaterialEntry {
@@ -118,6 +121,8 @@ public:
   virtual StageChange stage_change(PetscInt k) const {
     return k == 0 ? StageChange::Loads : StageChange::Other;
   }
+  // -dim 3 (extrude.hpp): the scene runs extruded along z (its results read any dimension).
+  virtual bool extrudes() const { return false; }
   // True when the later stages have no meaning any more (a footing that collapsed).
   virtual bool finished() const { return false; }
   // Checkpoint and restart (checkpoint.hpp): the scene's own state that changes during a run
@@ -135,7 +140,8 @@ struct SceneEntry {
   const char *description;          // one line: -help, docs/options.md
 };
 const std::vector<SceneEntry> &Scenes();
-std::string SceneList(); // the names joined by ", " (error messages, help texts)
+std::string SceneList();       // the names joined by ", " (error messages, help texts)
+std::string ExtrudingScenes(); // those that run under -dim 3 (Scene::extrudes), likewise
 // The scene of that name, or null.
 std::unique_ptr<Scene> make_scene(const std::string &name);
 
@@ -151,8 +157,8 @@ struct RunState {
   double wall_seconds = 0;  // all stages
   double stage_seconds = 0; // the current stage
   PetscInt migrations = 0;
-  double local_unbalanced = 0;              // this rank's largest nodal unbalanced force
-  double local_unbalanced_at[DIM] = {0, 0}; // and its node
+  double local_unbalanced = 0;               // this rank's largest nodal unbalanced force
+  double local_unbalanced_at[3] = {0, 0, 0}; // and its node (x, y; z in 3D)
   bool stop_stage = false;   // set by a scene's monitor: end the stage unconverged (a collapse)
   bool all_converged = true; // every stage so far converged
   // Stages that ended at their step cap out of equilibrium (not a collapse the scene asked for,
@@ -198,7 +204,9 @@ struct Scratch {
 struct Model {
   double origin[DIM] = {0, 0};
   PetscInt ncell[DIM] = {0, 0};
-  FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
+  // XMIN XMAX YMIN YMAX, then ZMIN ZMAX for -dim 3 (rollers unless -bc_zmin/-bc_zmax say)
+  FaceBC face[6] = {FaceBC::Free, FaceBC::Free,   FaceBC::Free,
+                    FaceBC::Free, FaceBC::Roller, FaceBC::Roller};
   // Traction (Pa) on the body's outermost particles toward each box face (free faces only).
   double face_traction[2 * DIM][DIM] = {{0, 0}, {0, 0}, {0, 0}, {0, 0}};
   std::vector<MaterialEntry> mats;
@@ -218,7 +226,9 @@ struct Simulation {
 
   Model model; // what the scene and the options define
 
-  Grid grid;
+  Grid grid; // the 2D grid (-dim 3: the one the scene generates its plane section on)
+  // -dim 3: the 3D grid the step runs on (extrude.hpp)
+  GridT<3> grid3;
   Balance balance; // -balance: the partition by particle counts (balance.hpp)
   Particles parts;
   InterfaceGrid iface_grid;              // body 1's field, only when an interface is on

@@ -2,6 +2,7 @@
 // global reductions over particles.
 #pragma once
 #include "pmpm/model/simulation.hpp"
+#include "pmpm/util/options.hpp"
 #include <functional>
 
 namespace pmpm {
@@ -13,9 +14,7 @@ using MaterialAt = std::function<int(const double x[DIM])>;
 // by `at`. Particle ids are rank-independent: (cell index * ppc^DIM + sub-index).
 void FillRegular(const Simulation &sim, const MaterialAt &at, ParticleList &out);
 
-// A length must be a positive whole number of cells (so faces fall on grid lines).
-PetscErrorCode CheckCells(MPI_Comm comm, const char *option, double length, double h,
-                          PetscInt *cells);
+// CheckCells (a length in whole cells): util/options.hpp.
 
 // Uniaxial strain (1D columns): every particle's sigma_yy and u_y against exact functions of its
 // initial height Y. Returns the volume-weighted relative L2 errors and, for each height in rows,

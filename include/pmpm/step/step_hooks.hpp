@@ -17,23 +17,27 @@ struct StepEvents {
 };
 extern StepEvents step_events;
 
-// What the phases of one step share.
-struct StepState {
+// What the phases of one step share, in dimension D (the hooks run in 2D only: D = DIM).
+template <int D> struct StepStateT {
   Simulation &sim;
-  const Load &load;
+  const LoadT<D> &load;
   const double dt;
   StepReport &rep;
-  ParticleView P;                 // this rank's particles, the whole step
-  GridView G;                     // the grid's global view during the grid update (phase 3)
-  GridUpdateParams gp;            // phase 3's parameters
-  G2PParams pp;                   // phase 5's parameters
-  const double *pshift = nullptr; // F-bar's group pressure for P2G's internal force, or null
-  GridView body;                  // body 1's local view during G2P (the interface) ...
-  const GridView *G1 = nullptr;   // ... which G2P reads through this, or null
-  const double *eigen = nullptr;  // the eigenstrain increment the stress update subtracts, or null
-  StepState(Simulation &s, const Load &l, double t, StepReport &r)
-      : sim(s), load(l), dt(t), rep(r) {}
+  GridStatsT<D> &grid_stats;        // rep.grid in 2D; the 3D step copies its own into rep
+  G2PStatsT<D> &g2p_stats;          // rep.g2p in 2D; likewise
+  ParticleView P;                   // this rank's particles, the whole step
+  GridViewT<D> G;                   // the grid's global view during the grid update (phase 3)
+  GridUpdateParamsT<D> gp;          // phase 3's parameters
+  G2PParamsT<D> pp;                 // phase 5's parameters
+  const double *pshift = nullptr;   // F-bar's group pressure for P2G's internal force, or null
+  GridViewT<D> body;                // body 1's local view during G2P (the interface) ...
+  const GridViewT<D> *G1 = nullptr; // ... which G2P reads through this, or null
+  const double *eigen = nullptr; // the eigenstrain increment the stress update subtracts, or null
+  StepStateT(Simulation &s, const LoadT<D> &l, double t, StepReport &r, GridStatsT<D> &gs,
+             G2PStatsT<D> &ps)
+      : sim(s), load(l), dt(t), rep(r), grid_stats(gs), g2p_stats(ps) {}
 };
+using StepState = StepStateT<DIM>;
 
 // An optional physics of the step.
 struct StepHook {

@@ -44,7 +44,11 @@ bool ListingHelp();
 #define PmpmCheckInput(cond, comm, err, ...)                                                       \
   PetscCheck((cond) || pmpm::ListingHelp(), comm, err, __VA_ARGS__)
 
-namespace pmpm {} // namespace pmpm
+namespace pmpm { // A length must be a positive whole number of cells (so faces fall on grid lines).
+PetscErrorCode CheckCells(MPI_Comm comm, const char *option, double length, double h,
+                          PetscInt *cells);
+
+} // namespace pmpm
 
 // Inside a PetscOptionsBegin/End block, as PetscOptionsReal/RealArray/Int.
 #define PmpmOptionsReal(a, b, c, d, e, f) pmpm::OptionReal(PetscOptionsObject, a, b, c, d, e, f)

@@ -1,0 +1,30 @@
+// -dim 3 -depth D: a 2D scene extruded along z over a depth D, run on a 3D grid (the first
+// three-dimensional runs, and the strongest check of the 3D engine: with rollers on the two z
+// faces the extruded body is in plane strain, so it must give the 2D answer to round-off).
+//
+// The scene sets up its plane as in 2D (box, faces, materials) and generates its plane's
+// particles; each becomes ppc particles per z cell over the depth (half-size h / (2 ppc) along
+// z, volume times the z spacing, id = 2D id x (z cells x ppc) + z index: rank-independent). The
+// 3D grid has the plane's cells and depth / h cells along z, the z faces -bc_zmin and -bc_zmax
+// (rollers by default), and its partition is PETSc's or -da_processors_x/y/z. Each rank
+// generates the whole plane (no grid: the plane's particles are O(N^(2/3)) of the run's N) and
+// keeps the particles of its 3D cells, so nothing is redistributed.
+//
+// What the 3D step does not run yet is refused before the run, by name (ExtrusionCheck): the
+// step's hooks (chains, the colour interface, F-bar, an imposed eigenstrain, cpGIMP's support
+// check), -solver newton, -geometry axisymmetric, -transfer apic, face tractions, supports inside
+// the box, checkpoints, restarts and -balance, and scenes whose results read the plane only
+// (Scene::extrudes).
+#pragma once
+#include "pmpm/model/prerun.hpp"
+
+namespace pmpm {
+
+// After the scene's setup and every option (-dim 2: only that -depth is not given).
+PetscErrorCode ExtrusionCheck(Simulation &sim);
+
+// -dim 3: the 3D grid (sim.grid3, its memory checked first), the swarm on it and this rank's
+// extruded particles, indexed. In place of the 2D grid and particles (simulation.cpp).
+PetscErrorCode ExtrudedGridAndParticles(Simulation &sim, const MemoryCheck &mem);
+
+} // namespace pmpm

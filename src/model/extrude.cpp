@@ -1,0 +1,128 @@
+// -dim 3: a 2D scene extruded along z (extrude.hpp).
+#include "pmpm/model/extrude.hpp"
+#include "pmpm/util/options.hpp"
+#include <cmath>
+
+namespace pmpm {
+
+PetscErrorCode ExtrusionCheck(Simulation &sim) {
+  const Settings &s = sim.set;
+  PetscFunctionBeginUser;
+  if (s.dim == 2) {
+    PmpmCheckInput(s.depth == 0, sim.comm, PETSC_ERR_ARG_INCOMP,
+                   "-depth %g is for -dim 3 (the run is 2D: -dim 2)", s.depth);
+    PetscFunctionReturn(0);
+  }
+  PmpmCheckInput(sim.scene->extrudes(), sim.comm, PETSC_ERR_SUP,
+                 "-dim 3: -scene %s has no 3D form yet (its results read the plane); scenes "
+                 "that extrude: %s",
+                 s.scene.c_str(), ExtrudingScenes().c_str());
+  // each refusal names what to change
+  const struct {
+    bool refused;
+    const char *what;
+  } refusals[] = {
+      {s.solver != "relaxation", "-solver newton (use -solver relaxation)"},
+      {s.geometry != Geometry::PlaneStrain, "-geometry axisymmetric"},
+      {s.fbar, "-fbar"},
+      {s.transfer != Transfer::Flip, "-transfer apic (use -transfer flip)"},
+      {s.shape == ShapeKind::CPGIMP, "-shape cpgimp (use -shape pmpm or linear)"},
+      {s.checkpoint_every > 0 || s.checkpoint_stage_end, "checkpoints (-checkpoint_every, "
+                                                         "-checkpoint_stage_end)"},
+      {!s.restart.empty(), "-restart"},
+      {sim.balance.mode == BalanceMode::Run,
+       "-balance run (the 3D partition is PETSc's or -da_processors_x/y/z)"},
+      {!sim.model.chain_specs.empty(), "membrane chains"},
+      {sim.model.iface.type != InterfaceType::Bonded, "-interface_type other than bonded"},
+  };
+  for (const auto &r : refusals)
+    PmpmCheckInput(!r.refused, sim.comm, PETSC_ERR_SUP, "-dim 3 does not run %s yet", r.what);
+  // -balance setup (the default) does not balance a 3D grid yet: the summary says none
+  sim.balance.mode = BalanceMode::None;
+  for (int f = 0; f < 2 * DIM; ++f)
+    PmpmCheckInput(sim.model.face_traction[f][0] == 0 && sim.model.face_traction[f][1] == 0,
+                   sim.comm, PETSC_ERR_SUP,
+                   "-dim 3 does not run face tractions (-bc_*_traction) yet");
+  PetscInt nz;
+  PetscCall(CheckCells(sim.comm, "-depth", s.depth, s.h, &nz));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+// The 2D scene's particles over the whole plane: the plane's grid is the box's cells, with no DM
+// (FillRegular and the scenes read its owned cells).
+PetscErrorCode GeneratePlane(Simulation &sim, ParticleList &plane) {
+  Grid &g = sim.grid;
+  PetscFunctionBeginUser;
+  g.h = sim.set.h;
+  for (int d = 0; d < DIM; ++d) {
+    g.origin[d] = sim.model.origin[d];
+    g.ncell[d] = sim.model.ncell[d];
+    g.cell_lo[d] = 0;
+    g.cell_hi[d] = sim.model.ncell[d];
+  }
+  PetscCall(sim.scene->generate(sim, plane));
+  PetscFunctionReturn(0);
+}
+
+// The plane's particles extruded into the z cells this rank owns, each kept only where this rank
+// owns its (x, y) cell too.
+void Extrude(const Simulation &sim, const ParticleList &plane, ParticleListT<3> &out) {
+  const GridT<3> &g = sim.grid3;
+  const double h = sim.set.h, dz = h / sim.set.ppc;
+  const PetscInt nz = g.ncell[2] * sim.set.ppc; // particles along z
+  for (const ParticleInit &q : plane) {
+    PetscInt c[3];
+    for (int d = 0; d < DIM; ++d)
+      c[d] = static_cast<PetscInt>(std::floor((q.x[d] - g.origin[d]) / h));
+    c[2] = g.cell_lo[2];
+    if (!g.owns_cell(c)) continue;
+    for (PetscInt k = g.cell_lo[2] * sim.set.ppc; k < g.cell_hi[2] * sim.set.ppc; ++k) {
+      ParticleInitT<3> p{};
+      for (int d = 0; d < DIM; ++d) {
+        p.x[d] = q.x[d];
+        p.lp[d] = q.lp[d];
+      }
+      p.x[2] = g.origin[2] + (k + 0.5) * dz;
+      p.lp[2] = 0.5 * dz;
+      p.vol = q.vol * dz;
+      p.density = q.density;
+      p.gamma = q.gamma;
+      p.colour = q.colour;
+      p.mat = q.mat;
+      p.pid = q.pid * nz + k;
+      p.body = q.body;
+      p.load = -1;
+      out.push_back(p);
+    }
+  }
+}
+} // namespace
+
+PetscErrorCode ExtrudedGridAndParticles(Simulation &sim, const MemoryCheck &mem) {
+  PetscFunctionBeginUser;
+  double origin[3] = {sim.model.origin[0], sim.model.origin[1], 0.0};
+  PetscInt ncell[3] = {sim.model.ncell[0], sim.model.ncell[1], 0};
+  PetscCall(CheckCells(sim.comm, "-depth", sim.set.depth, sim.set.h, &ncell[2]));
+  PetscCall(CheckMemoryExtruded(sim, mem, ncell[2], 0));
+  PetscCall(GridCreate<3>(sim.comm, sim.set.h, origin, ncell, 1, 0, sim.grid3));
+  PetscCall(ParticlesCreate(sim.grid3, sim.parts));
+  {
+    ParticleList plane;
+    PetscCall(GeneratePlane(sim, plane));
+    ParticleListT<3> init;
+    Extrude(sim, plane, init);
+    plane.clear();
+    PetscCall(CheckMemoryExtruded(sim, mem, ncell[2], static_cast<PetscInt>(init.size())));
+    PetscCall(ParticlesAdd(sim.parts, init));
+  }
+  PetscCall(SimulationIndexParticles(sim));
+  PetscInt n;
+  PetscCall(ParticlesGlobalCount(sim.parts, &n));
+  sim.particles_setup = n;
+  PetscCheck(n > 0, sim.comm, PETSC_ERR_USER_INPUT,
+             "the scene produced no particles: check the geometry options against -cell_size");
+  PetscFunctionReturn(0);
+}
+
+} // namespace pmpm

@@ -1,0 +1,128 @@
+"""-dim 3 -depth D against the 2D run: the column extruded along z with rollers on both z faces is
+in plane strain, so every particle of the 3D run must follow its 2D parent (docs/method.md,
+"Three dimensions").
+
+usage: test_dim3.py EXE OUTDIR
+
+1. Fixed step count (-tol tiny, so every run takes the same steps): the column (linear elastic,
+   h = 0.0625 m, 2 ppc) in 2D on 1 rank, and extruded over 0.5 m (8 cells, 16 particles along z)
+   on 1 rank, 2 ranks (PETSc's process grid), 4 ranks as 2x2x1 and as 1x1x4. Each 3D particle's
+   x, y and its stresses xx, yy, zz, xy equal its 2D parent's (id // 16) to 1e-10 of the column
+   height and of the largest stress; its z stays put and its out-of-plane shears yz, xz stay zero
+   to the same bounds. The 3D runs agree among themselves by the same token (rank invariance).
+   The same on one rank for neo-Hookean at 26 % compression, von Mises and Drucker-Prager
+   (both yielding at the base: the 3D return maps on a plane-strain path).
+2. Converged (the column's own tolerance): the 3D settlement equals the 2D one to 1e-10 of the
+   height and the closed-form errors equal the 2D run's. The two runs stop a few steps apart
+   (the unbalanced-force ratio divides by the mean nodal load, which the z faces' half-loaded
+   nodes lower in 3D), so the bound is the position bound, not round-off.
+3. The summary and the particles file say 3D: cells [4, 18, 8], the partition's three
+   directions, XYZ geometry in the .xmf.
+The 1e-10 bounds: round-off after a few hundred steps of sums that differ in order between 2D and
+3D (measured: a few 1e-13), with three orders of margin; a wrong z coupling, a lost shear or a
+mis-weighted z-face node is of the order of the strain itself (1e-4 and up).
+"""
+import sys
+import numpy as np
+from pmpmtest import Checks, particles, run, summary
+
+exe, out = sys.argv[1], sys.argv[2]
+c = Checks("dim3")
+H = 1.0
+BASE = ["-options_file", "options/column.opts", "-cell_size", "0.0625"]
+FIXED = ["-tol", "1e-30", "-max_steps", "400", "-ramp_steps", "200"]
+D3 = ["-dim", "3", "-depth", "0.5"]
+NZ = 16  # particles along z: 8 cells x 2 ppc
+FIELDS = ("position", "position0", "stress")
+
+MATERIALS = {
+    "elastic": [],
+    "neo_hookean": ["-mat_column_model", "neo_hookean", "-mat_column_E", "1e6",
+                    "-mat_column_nu", "0", "-mat_column_gamma", "3e5"],
+    "von_mises": ["-mat_column_model", "von_mises", "-mat_column_yield_stress", "5e3",
+                  "-mat_column_hardening", "1e5"],
+    "drucker_prager": ["-mat_column_model", "drucker_prager", "-mat_column_cohesion", "1e3",
+                       "-mat_column_friction_angle", "5", "-mat_column_dilation_angle", "0"],
+}
+
+
+def compare_to_2d(name, p2, p3):
+    """Every 3D particle against its 2D parent; returns the worst errors."""
+    ids2, f2 = p2
+    ids3, f3 = p3
+    parent = np.searchsorted(ids2, ids3 // NZ)
+    ok = len(ids3) == NZ * len(ids2) and np.all(ids2[parent] == ids3 // NZ)
+    c.check(f"{name}: {NZ} particles along z per 2D particle", ok,
+            f"{len(ids3)} vs {len(ids2)}")
+    if not ok:
+        return
+    x2, x3 = f2["position"][parent], f3["position"]
+    s2, s3 = f2["stress"][parent], f3["stress"]
+    smax = np.abs(s2).max()
+    c.le(f"{name}: x, y equal the 2D run's (/H)", np.abs(x3[:, :2] - x2).max() / H, 1e-10)
+    c.le(f"{name}: z unchanged (/H)", np.abs(x3[:, 2] - f3["position0"][:, 2]).max() / H, 1e-10)
+    c.le(f"{name}: xx yy zz xy equal the 2D run's (/max |stress|)",
+         np.abs(s3[:, :4] - s2).max() / smax, 1e-10)
+    c.le(f"{name}: yz, xz zero (/max |stress|)", np.abs(s3[:, 4:]).max() / smax, 1e-10)
+    c.ge(f"{name}: the column deformed (max |u_y| / H)",
+         np.abs(x2[:, 1] - f2["position0"][parent][:, 1]).max() / H, 1e-5)
+
+
+# 1. fixed steps, linear elastic on 1, 2 and 4 ranks
+run(exe, 1, BASE + FIXED, out + "/2d", capped=True)
+ref = particles(out + "/2d", FIELDS)
+runs3 = {}
+for label, np_, grid in [("np1", 1, []), ("np2", 2, []),
+                         ("np4_2x2x1", 4, ["-da_processors_x", "2", "-da_processors_y", "2",
+                                           "-da_processors_z", "1"]),
+                         ("np4_1x1x4", 4, ["-da_processors_x", "1", "-da_processors_y", "1",
+                                           "-da_processors_z", "4"])]:
+    run(exe, np_, BASE + FIXED + D3 + grid, out + "/3d_" + label, capped=True)
+    runs3[label] = particles(out + "/3d_" + label, FIELDS)
+    compare_to_2d("elastic 3D " + label, ref, runs3[label])
+s = summary(out + "/3d_np4_1x1x4")
+c.check("1x1x4: the partition has 4 ranks along z", s["partition"]["processes"] == [1, 1, 4],
+        str(s["partition"]["processes"]))
+s = summary(out + "/3d_np4_2x2x1")
+c.check("2x2x1: the partition", s["partition"]["processes"] == [2, 2, 1],
+        str(s["partition"]["processes"]))
+x1 = runs3["np1"][1]["position"]
+for label in ("np2", "np4_2x2x1", "np4_1x1x4"):
+    c.le(f"3D {label} positions equal 1 rank's (/H)",
+         np.abs(runs3[label][1]["position"] - x1).max() / H, 1e-10)
+
+# the other three laws on one rank
+for name, opts in MATERIALS.items():
+    if name == "elastic":
+        continue
+    run(exe, 1, BASE + opts + FIXED, out + "/2d_" + name, capped=True)
+    run(exe, 1, BASE + opts + FIXED + D3, out + "/3d_" + name, capped=True)
+    compare_to_2d(name + " 3D", particles(out + "/2d_" + name, FIELDS + ("eps_p",)),
+                  particles(out + "/3d_" + name, FIELDS))
+    if name in ("von_mises", "drucker_prager"):
+        ep = particles(out + "/3d_" + name, ("eps_p",))[1]["eps_p"]
+        c.ge(f"{name} 3D: the base yielded (max eps_p)", float(np.max(ep)), 1e-6)
+
+# 2. converged, against the closed form and the 2D run
+run(exe, 1, BASE, out + "/2d_conv")
+run(exe, 2, BASE + D3, out + "/3d_conv")
+s2, s3 = summary(out + "/2d_conv"), summary(out + "/3d_conv")
+c.check("3D converged", s3["converged"] is True)
+r2, r3 = s2["results"], s3["results"]
+c.le("converged settlement: 3D - 2D (/H)", abs(r3["top_settlement"] - r2["top_settlement"]) / H,
+     1e-10)
+c.le("converged stress L2 error: 3D - 2D", abs(r3["stress_l2_error_rel"] - r2["stress_l2_error_rel"]),
+     1e-8)
+c.le("converged stress L2 error against the closed form (2D's at h = H/16: 2.7 %)",
+     r3["stress_l2_error_rel"], 0.03)
+
+# 3. what the files say
+c.check("summary cells [4, 18, 8]", s3["cells"] == [4, 18, 8], str(s3["cells"]))
+c.check("partition has z ranges", "nodes_z" in s3["partition"] and
+        "cell_bounds_z" in s3["partition"])
+with open(out + "/3d_conv/particles.xmf") as f:
+    xmf = f.read()
+c.check("particles.xmf: XYZ geometry, 3-vectors, 6 stress components",
+        'GeometryType="XYZ"' in xmf and "Dimensions=\"%d 3\"" % s3["particles"] in xmf and
+        "Dimensions=\"%d 6\"" % s3["particles"] in xmf)
+c.done()
