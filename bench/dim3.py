@@ -1,0 +1,118 @@
+#!/usr/bin/python3
+"""The explicit step in 3D (-dim 3, issue 22): time per step by phase and peak memory per
+particle of the extruded column at about 1 M and 4 M particles, beside the 2D column at 262 k and
+a 2D baseline binary (the 2D path must keep its speed: within 3 %).
+
+    /usr/bin/python3 bench/dim3.py                 # ~4 min on 1 core (plus a baseline build);
+                                                   # writes bench/out/dim3/DIM3.md and
+                                                   # docs/benchmarks/dim3.md
+    /usr/bin/python3 bench/dim3.py --quick         # 2D and 1 M only, no baseline, no docs
+    /usr/bin/python3 bench/dim3.py --baseline REV  # the 2D baseline's git revision (default
+                                                   # 20c9024, main before the 3D step)
+
+Every run takes a fixed number of steps (-tol 1e-30) on one rank, with -log_view; the table gives
+the Relaxation stage's seconds per step, the step's phases (P2G, G2P, StressUpdate, GridUpdate) in
+ms per step, particle-updates per second, and the peak resident size (/usr/bin/time) less the 48 MB
+a rank's libraries take, per particle. The 2D rows alternate the baseline and this build, three
+times each (the machine may be shared): medians.
+"""
+import argparse
+import json
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "bench"))
+from benchmarks_md import MPI_ENV, build_revision, publish  # noqa: E402
+
+OUT = ROOT / "bench" / "out" / "dim3"
+MARK_BEGIN, MARK_END = "<!-- dim3.py begin -->", "<!-- dim3.py end -->"
+COLUMN = ["-options_file", "options/column.opts", "-column_width", "1", "-tol", "1e-30",
+          "-ramp_steps", "10"]
+# label -> (extra options, steps)
+CASES = {
+    "2D, h = 1/256": (["-cell_size", "0.00390625"], 50),
+    "3D, h = 1/64, depth 0.5": (["-cell_size", "0.015625", "-dim", "3", "-depth", "0.5"], 20),
+    "3D, h = 1/64, depth 2": (["-cell_size", "0.015625", "-dim", "3", "-depth", "2"], 10),
+}
+PHASES = ("P2G", "G2P", "StressUpdate", "GridUpdate")
+BASE_RSS_KB = 48 * 1024
+
+
+def run(exe, label, tag):
+    extra, steps = CASES[label]
+    d = OUT / tag
+    if d.is_dir():
+        shutil.rmtree(d)
+    cmd = ["/usr/bin/time", "-f", "RSS_KB %M", str(exe)] + COLUMN + extra + \
+        ["-max_steps", str(steps), "-output_dir", str(d), "-quiet", "-log_view"]
+    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, text=True)
+    if p.returncode not in (0, 3):
+        print(p.stdout[-3000:])
+        sys.exit(f"pmpm failed: {' '.join(cmd)}")
+    n = json.loads((d / "summary.json").read_text())["particles"]
+    relax = float(re.search(r"^\s*\d+:\s+Relaxation:\s+(\S+)", p.stdout, re.M).group(1))
+    phases = {}
+    for ph in PHASES:
+        m = re.search(rf"^{ph}\s+\d+\s+\S+\s+(\S+)", p.stdout, re.M)
+        phases[ph] = float(m.group(1)) / steps * 1e3 if m else 0.0
+    rss = int(re.search(r"RSS_KB (\d+)", p.stdout).group(1))
+    return {"n": n, "step_s": relax / steps, "phases": phases, "rss_kb": rss, "steps": steps}
+
+
+def row(label, r):
+    ph = " | ".join(f"{r['phases'][p]:.1f}" for p in PHASES)
+    return (f"| {label} | {r['n']:,} | {r['steps']} | {r['step_s'] * 1e3:.1f} | {ph} | "
+            f"{r['n'] / r['step_s'] / 1e6:.2f} | {r['rss_kb'] / 1024:.0f} | "
+            f"{(r['rss_kb'] - BASE_RSS_KB) * 1024 / r['n']:.0f} |")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--baseline", default="20c9024")
+    a = ap.parse_args()
+    exe = ROOT / "build" / "pmpm"
+    rows = []
+    two = list(CASES)[0]
+    if not a.quick:
+        base = build_revision(a.baseline, "dim3")
+        b, c = [], []
+        for k in range(3):
+            b.append(run(base, two, f"2d_base_{k}"))
+            c.append(run(exe, two, f"2d_{k}"))
+        med = lambda rs: sorted(rs, key=lambda r: r["step_s"])[1]  # noqa: E731
+        rows.append(row(f"{two}, baseline {a.baseline}", med(b)))
+        rows.append(row(f"{two}, this build", med(c)))
+        ratio = med(c)["step_s"] / med(b)["step_s"]
+    else:
+        rows.append(row(f"{two}, this build", run(exe, two, "2d_0")))
+        ratio = None
+    for label in list(CASES)[1:(2 if a.quick else 3)]:
+        rows.append(row(label, run(exe, label, label.replace(" ", "").replace(",", "_")
+                                   .replace("/", "").replace("=", ""))))
+    text = "\n".join([
+        MARK_BEGIN, "## The explicit step in 3D: time and memory", "",
+        "`/usr/bin/python3 bench/dim3.py`: the column (`options/column.opts`, width 1 m, linear "
+        "elastic, 2 ppc) on one rank, a fixed number of steps; 3D is the same column extruded "
+        "(`-dim 3 -depth D`, 8 particles a cell). Phases in ms per step from `-log_view`; "
+        "memory is the peak resident size and, per particle, that less the 48 MB of a rank's "
+        "libraries (it includes the grid and the particles file's output buffers).", "",
+        "| run | particles | steps | ms / step | P2G | G2P | StressUpdate | GridUpdate | "
+        "M particle-updates / s | peak RSS (MB) | B / particle |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+        *rows, "",
+        (f"2D this build / baseline, ms per step (medians of 3, alternated): {ratio:.3f}."
+         if ratio else "(--quick: no baseline.)"),
+        MARK_END, ""])
+    OUT.mkdir(parents=True, exist_ok=True)
+    publish(text, OUT / "DIM3.md", MARK_BEGIN, MARK_END, not a.quick)
+
+
+if __name__ == "__main__":
+    main()
