@@ -39,10 +39,6 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
     PmpmCheckInput(!r.refused, sim.comm, PETSC_ERR_SUP, "-dim 3 does not run %s yet", r.what);
   // -balance setup (the default) does not balance a 3D grid yet: the summary says none
   sim.balance.mode = BalanceMode::None;
-  for (int f = 0; f < 2 * DIM; ++f)
-    PmpmCheckInput(sim.model.face_traction[f][0] == 0 && sim.model.face_traction[f][1] == 0,
-                   sim.comm, PETSC_ERR_SUP,
-                   "-dim 3 does not run face tractions (-bc_*_traction) yet");
   PetscInt nz;
   PetscCall(CheckCells(sim.comm, "-depth", s.depth, s.h, &nz));
   PetscFunctionReturn(0);
@@ -62,6 +58,24 @@ PetscErrorCode GeneratePlane(Simulation &sim, ParticleList &plane) {
     g.cell_hi[d] = sim.model.ncell[d];
   }
   PetscCall(sim.scene->generate(sim, plane));
+  // the plane's surface loads (per unit depth), a table every rank builds from its whole plane,
+  // then each entry for a particle of z spacing dz: the force times dz, the face and the
+  // half-size with their z components
+  PetscCall(ApplyFaceTractions(sim, plane));
+  PetscCall(BuildLoadTable(sim, plane, PETSC_COMM_SELF));
+  const double dz = sim.set.h / sim.set.ppc;
+  sim.model.loads3.resize(sim.model.loads.size());
+  for (size_t k = 0; k < sim.model.loads.size(); ++k) {
+    const ParticleLoad &L = sim.model.loads[k];
+    ParticleLoadT<3> &L3 = sim.model.loads3[k];
+    for (int d = 0; d < DIM; ++d) {
+      L3.traction[d] = L.traction[d] * dz;
+      L3.tface[d] = L.tface[d];
+      L3.lp[d] = L.lp[d];
+    }
+    L3.traction[2] = L3.tface[2] = 0;
+    L3.lp[2] = 0.5 * dz;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -92,7 +106,7 @@ void Extrude(const Simulation &sim, const ParticleList &plane, ParticleListT<3> 
       p.mat = q.mat;
       p.pid = q.pid * nz + k;
       p.body = q.body;
-      p.load = -1;
+      p.load = q.load; // its plane particle's entry of sim.model.loads3
       out.push_back(p);
     }
   }
@@ -104,6 +118,7 @@ PetscErrorCode ExtrudedGridAndParticles(Simulation &sim, const MemoryCheck &mem)
   double origin[3] = {sim.model.origin[0], sim.model.origin[1], 0.0};
   PetscInt ncell[3] = {sim.model.ncell[0], sim.model.ncell[1], 0};
   PetscCall(CheckCells(sim.comm, "-depth", sim.set.depth, sim.set.h, &ncell[2]));
+  PetscCall(CheckProcessGrid(sim, 3, ncell));
   PetscCall(CheckMemoryExtruded(sim, mem, ncell[2], 0));
   PetscCall(GridCreate<3>(sim.comm, sim.set.h, origin, ncell, 1, 0, sim.grid3));
   PetscCall(ParticlesCreate(sim.grid3, sim.parts));

@@ -187,35 +187,51 @@ PetscErrorCode CheckMemoryExtruded(Simulation &sim, const MemoryCheck &m, PetscI
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckProcessGrid(Simulation &sim) {
-  const char *names[DIM] = {"-da_processors_x", "-da_processors_y"};
-  PetscInt np[DIM] = {0, 0};
-  PetscBool set[DIM] = {PETSC_FALSE, PETSC_FALSE};
+PetscErrorCode CheckProcessGrid(Simulation &sim, int D, const PetscInt *ncell) {
+  const char *names[3] = {"-da_processors_x", "-da_processors_y", "-da_processors_z"};
+  PetscInt np[3] = {0, 0, 0};
+  PetscBool set[3] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE};
   PetscFunctionBeginUser;
-  for (int d = 0; d < DIM; ++d) {
+  for (int d = 0; d < D; ++d) {
     PetscCall(PetscOptionsGetInt(nullptr, nullptr, names[d], &np[d], &set[d]));
     if (!set[d]) continue;
     // the stencil width, 2: a rank needs at least two node columns (rows)
-    const PetscInt nodes = sim.model.ncell[d] + 1, most = nodes / 2;
+    const PetscInt nodes = ncell[d] + 1, most = nodes / 2;
     PetscCheck(np[d] >= 1 && np[d] <= most, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                "%s %" PetscInt_FMT " must be in 1..%" PetscInt_FMT ": the grid has %" PetscInt_FMT
                " nodes in %c and each rank needs at least 2",
-               names[d], np[d], most, nodes, "xy"[d]);
+               names[d], np[d], most, nodes, "xyz"[d]);
     PetscCheck(sim.size % np[d] == 0, sim.comm, PETSC_ERR_ARG_INCOMP,
                "%s %" PetscInt_FMT " does not divide the %d ranks", names[d], np[d], sim.size);
   }
-  PetscCheck(!set[0] || !set[1] || np[0] * np[1] == sim.size, sim.comm, PETSC_ERR_ARG_INCOMP,
-             "-da_processors_x %" PetscInt_FMT " times -da_processors_y %" PetscInt_FMT
-             " must be the %d ranks",
-             np[0], np[1], sim.size);
-  for (int d = 0; d < DIM; ++d) // the other direction then takes the remaining ranks
-    if (set[d] && !set[1 - d]) {
-      const PetscInt other = sim.size / np[d], nodes = sim.model.ncell[1 - d] + 1;
-      PetscCheck(other <= nodes / 2, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "%s %" PetscInt_FMT " leaves %" PetscInt_FMT " ranks in %c, where the grid has "
-                 "%" PetscInt_FMT " nodes and each rank needs at least 2",
-                 names[d], np[d], other, "xy"[1 - d], nodes);
-    }
+  PetscInt given = 0, product = 1, missing = -1;
+  for (int d = 0; d < D; ++d) {
+    if (set[d]) {
+      ++given;
+      product *= np[d];
+    } else
+      missing = d;
+  }
+  if (D == 2)
+    PetscCheck(!set[0] || !set[1] || np[0] * np[1] == sim.size, sim.comm, PETSC_ERR_ARG_INCOMP,
+               "-da_processors_x %" PetscInt_FMT " times -da_processors_y %" PetscInt_FMT
+               " must be the %d ranks",
+               np[0], np[1], sim.size);
+  else
+    PetscCheck(given < D ? sim.size % product == 0 : product == sim.size, sim.comm,
+               PETSC_ERR_ARG_INCOMP,
+               "-da_processors_x/y/z (%" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT
+               ", 0: not given) must multiply to the %d ranks",
+               np[0], np[1], np[2], sim.size);
+  if (given == D - 1) { // the other direction then takes the remaining ranks
+    const PetscInt other = sim.size / product, nodes = ncell[missing] + 1;
+    for (int d = 0; d < D; ++d)
+      if (set[d])
+        PetscCheck(other <= nodes / 2, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "%s %" PetscInt_FMT " leaves %" PetscInt_FMT " ranks in %c, where the grid has "
+                   "%" PetscInt_FMT " nodes and each rank needs at least 2",
+                   names[d], np[d], other, "xyz"[missing], nodes);
+  }
   PetscFunctionReturn(0);
 }
 

@@ -377,6 +377,8 @@ PetscErrorCode BoundaryFromOptions(Simulation &sim) {
   PetscFunctionReturn(0);
 }
 
+} // namespace
+
 // A face traction loads the particles whose blocks reach the body's extreme toward that face:
 // force t * (the block's face length), applied at the block's face (tface, see p2g_traction).
 PetscErrorCode ApplyFaceTractions(Simulation &sim, ParticleList &init) {
@@ -400,10 +402,12 @@ PetscErrorCode ApplyFaceTractions(Simulation &sim, ParticleList &init) {
 // The surface loads as a table every rank holds alike: the loaded particles of every rank, in
 // particle-id order (so the table does not depend on the rank count); each particle keeps its
 // entry's index.
-PetscErrorCode BuildLoadTable(Simulation &sim, ParticleList &init) {
+PetscErrorCode BuildLoadTable(Simulation &sim, ParticleList &init, MPI_Comm comm) {
   constexpr int W = 1 + 3 * DIM; // pid, traction, tface, lp
   std::vector<double> mine;
+  PetscMPIInt size;
   PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
   for (const auto &q : init)
     if (q.traction[0] != 0.0 || q.traction[1] != 0.0) {
       mine.push_back(static_cast<double>(q.pid));
@@ -412,12 +416,12 @@ PetscErrorCode BuildLoadTable(Simulation &sim, ParticleList &init) {
       for (int d = 0; d < DIM; ++d) mine.push_back(q.lp[d]);
     }
   int n = static_cast<int>(mine.size());
-  std::vector<int> counts(sim.size), displs(sim.size, 0);
-  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, sim.comm));
-  for (int r = 1; r < sim.size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  std::vector<int> counts(size), displs(size, 0);
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
+  for (int r = 1; r < size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
   std::vector<double> all(static_cast<size_t>(displs.back() + counts.back()));
   PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
-                              MPI_DOUBLE, sim.comm));
+                              MPI_DOUBLE, comm));
   const size_t nl = all.size() / W;
   std::vector<size_t> order(nl);
   for (size_t k = 0; k < nl; ++k) order[k] = k;
@@ -439,6 +443,8 @@ PetscErrorCode BuildLoadTable(Simulation &sim, ParticleList &init) {
       q.load = std::lower_bound(pids.begin(), pids.end(), q.pid) - pids.begin();
   PetscFunctionReturn(0);
 }
+
+namespace {
 
 // With chains, a particle's body is 2 k, k the number of chains below its centre (a chain's
 // height at x by linear interpolation of its points, held level beyond its ends).
@@ -668,7 +674,7 @@ PetscErrorCode ChainsFromOptions(Simulation &sim, PetscBool help, PetscBool type
 PetscErrorCode GridAndParticles(Simulation &sim, const MemoryCheck &mem, int nbody, int nchain) {
   PetscFunctionBeginUser;
   const bool iface = sim.model.iface.type != InterfaceType::Bonded && nchain == 0;
-  PetscCall(CheckProcessGrid(sim));
+  PetscCall(CheckProcessGrid(sim, DIM, sim.model.ncell));
   PetscCall(CheckMemoryGrid(sim, mem, nbody * GridDof::NDOF + nchain * ChainDof::NDOF, iface));
   PetscCall(GridCreate(sim.comm, sim.set.h, sim.model.origin, sim.model.ncell, nbody,
                        nchain * ChainDof::NDOF, sim.grid));
@@ -682,7 +688,7 @@ PetscErrorCode GridAndParticles(Simulation &sim, const MemoryCheck &mem, int nbo
   PetscCall(ApplyFaceTractions(sim, init));
   PetscCall(GeometryWeight(sim, init));
   if (nchain > 0) AssignBodies(sim, init);
-  PetscCall(BuildLoadTable(sim, init));
+  PetscCall(BuildLoadTable(sim, init, sim.comm));
   // The PMPM support spans at most two cells per direction: 0 < l <= h/2.
   for (const auto &q : init)
     for (int d = 0; d < DIM; ++d)

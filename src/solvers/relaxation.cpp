@@ -70,11 +70,12 @@ constexpr double kTensionWarn = 0.01;
 // sum_p f_p . v_p over this rank's particles (the load's power after the step).
 // Power of the surface tractions on this rank's loaded particles (per unit load factor); the
 // body forces' share comes from G2P (G2PStats::weight_power).
-double TractionPower(const ParticleView &P, const std::vector<ParticleLoad> &loads,
+template <int D>
+double TractionPower(const ParticleView &P, const std::vector<ParticleLoadT<D>> &loads,
                      const std::vector<PetscInt> &idx) {
   double pw = 0;
   for (const PetscInt p : idx)
-    for (int d = 0; d < DIM; ++d) pw += loads[P.load[p]].traction[d] * P.v[p * DIM + d];
+    for (int d = 0; d < D; ++d) pw += loads[P.load[p]].traction[d] * P.v[p * D + d];
   return pw;
 }
 
@@ -415,7 +416,8 @@ PetscErrorCode RelaxationSolver::LoadWork(Simulation &sim, const Load &load,
   if (!sim.traction_idx.empty()) {
     ParticleView P;
     PetscCall(ParticlesGetView(sim.parts, P));
-    pw += TractionPower(P, sim.model.loads, sim.traction_idx);
+    pw += sim.parts.dim == 3 ? TractionPower(P, sim.model.loads3, sim.traction_idx)
+                             : TractionPower(P, sim.model.loads, sim.traction_idx);
     PetscCall(ParticlesRestoreView(sim.parts, P));
   }
   st.budget_w_local += sim.run.dt * (load.factor * pw + rep.grid.support_power) + rep.eigen_power;

@@ -47,9 +47,12 @@ PetscErrorCode ParticlesToGrid(StepStateT<D> &S, const ActiveHooks &h) {
     PmpmLogEventScope(step_events.p2g);
     PetscCall(GridGetLocal(StepGrid<D>(sim), true, G));
     p2g<Shape>(S.P, S.load, G, nullptr, 0, S.pshift);
-    if constexpr (D == DIM)
-      if (!sim.traction_idx.empty())
+    if (!sim.traction_idx.empty()) {
+      if constexpr (D == 3) // -dim 3: the extruded table (extrude.hpp)
+        p2g_traction<Shape>(S.P, sim.model.loads3, sim.traction_idx, S.load.factor, G);
+      else
         p2g_traction<Shape>(S.P, sim.model.loads, sim.traction_idx, S.load.factor, G);
+    }
     PetscCall(GridRestoreLocal(StepGrid<D>(sim), G));
   }
   PetscCall(Hooks(h, &StepHook::p2g, S));
@@ -389,36 +392,46 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, const FireMix 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio) {
-  Grid &g = sim.grid;
-  GridView G;
+namespace {
+// P2G of the whole load with one shape: the internal and external forces (and the tractions).
+template <class Shape, int D>
+void StaticForces(Simulation &sim, const ParticleView &P, const LoadT<D> &load,
+                  const GridViewT<D> &G) {
+  p2g<Shape>(P, load, G);
+  if (sim.traction_idx.empty()) return;
+  if constexpr (D == 3)
+    p2g_traction<Shape>(P, sim.model.loads3, sim.traction_idx, load.factor, G);
+  else
+    p2g_traction<Shape>(P, sim.model.loads, sim.traction_idx, load.factor, G);
+}
+
+template <int D> PetscErrorCode StaticResidualIn(Simulation &sim, ShapeKind shape, double *ratio) {
+  GridT<D> &g = StepGrid<D>(sim);
+  GridViewT<D> G;
   ParticleView P;
-  Load load;
-  GridStats st;
-  GridUpdateParams gp; // dt = 0, no damping: only the force sums are wanted
+  LoadT<D> load;
+  GridStatsT<D> st;
+  GridUpdateParamsT<D> gp; // dt = 0, no damping: only the force sums are wanted
   PetscFunctionBeginUser;
   for (int d = 0; d < DIM; ++d) load.gdir[d] = sim.set.gdir[d];
-  for (int f = 0; f < 2 * DIM; ++f) gp.face[f] = sim.model.face[f];
+  for (int f = 0; f < 2 * D; ++f) gp.face[f] = sim.model.face[f];
   gp.prescribed = &sim.prescribed;
   PetscCall(ParticlesGetView(sim.parts, P));
   PetscCall(GridGetLocal(g, true, G));
-  const bool tr = !sim.traction_idx.empty();
   switch (shape) {
   case ShapeKind::Linear:
-    p2g<LinearShape>(P, load, G);
-    if (tr) p2g_traction<LinearShape>(P, sim.model.loads, sim.traction_idx, load.factor, G);
+    StaticForces<LinearShape>(sim, P, load, G);
     break;
   case ShapeKind::UGIMP:
-    p2g<UGIMPShape>(P, load, G);
-    if (tr) p2g_traction<UGIMPShape>(P, sim.model.loads, sim.traction_idx, load.factor, G);
+    StaticForces<UGIMPShape>(sim, P, load, G);
     break;
   case ShapeKind::CPGIMP:
-    p2g<CPGIMPShape>(P, load, G);
-    if (tr) p2g_traction<CPGIMPShape>(P, sim.model.loads, sim.traction_idx, load.factor, G);
+    StaticForces<CPGIMPShape>(sim, P, load, G);
     break;
   }
   // the chains' tension, weight and end loads (grid_update sums a node's bodies)
-  for (const Chain &c : sim.chains) p2g_chain(c, load, G, g);
+  if constexpr (D == DIM)
+    for (const Chain &c : sim.chains) p2g_chain(c, load, G, g);
   PetscCall(GridRestoreLocal(g, G));
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscCall(GridLocalToGlobalAdd(g));
@@ -432,6 +445,12 @@ PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio) {
              "no node carries an external load: the residual ratio is undefined");
   *ratio = mx / (sm[0] / sm[1]);
   PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode StaticResidual(Simulation &sim, ShapeKind shape, double *ratio) {
+  return sim.set.dim == 3 ? StaticResidualIn<3>(sim, shape, ratio)
+                          : StaticResidualIn<DIM>(sim, shape, ratio);
 }
 
 PetscErrorCode InitialWaveSpeed(Simulation &sim, double *max_speed) {

@@ -12,9 +12,10 @@
 //
 // What the 3D step does not run yet is refused before the run, by name (ExtrusionCheck): the
 // step's hooks (chains, the colour interface, F-bar, an imposed eigenstrain, cpGIMP's support
-// check), -solver newton, -geometry axisymmetric, -transfer apic, face tractions, supports inside
-// the box, checkpoints, restarts and -balance, and scenes whose results read the plane only
-// (Scene::extrudes).
+// check), -solver newton, -geometry axisymmetric, -transfer apic, supports inside the box,
+// checkpoints, restarts and -balance run, and scenes whose results read the plane only
+// (Scene::extrudes). Face tractions extrude: the plane's load table (per unit depth) becomes
+// sim.model.loads3, each entry times the particles' z spacing, shared by a particle's z copies.
 #pragma once
 #include "pmpm/model/prerun.hpp"
 

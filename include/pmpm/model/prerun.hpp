@@ -36,9 +36,9 @@ PetscErrorCode CheckMemoryParticles(Simulation &sim, const MemoryCheck &m, Petsc
 PetscErrorCode CheckMemoryExtruded(Simulation &sim, const MemoryCheck &m, PetscInt nz,
                                    PetscInt nlocal);
 
-// A process grid given with -da_processors_x/y that leaves a rank fewer than two nodes in a
-// direction (the stencil width), or does not multiply to the rank count (PETSc would fail on
-// some ranks only, deep in DMSetUp). Before the grid is created.
-PetscErrorCode CheckProcessGrid(Simulation &sim);
+// A process grid given with -da_processors_x/y (/z in 3D) that leaves a rank fewer than two nodes
+// in a direction (the stencil width), or does not multiply to the rank count (PETSc would fail on
+// some ranks only, deep in DMSetUp). Before the grid of dimension D with ncell cells is created.
+PetscErrorCode CheckProcessGrid(Simulation &sim, int D, const PetscInt *ncell);
 
 } // namespace pmpm

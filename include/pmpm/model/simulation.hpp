@@ -215,7 +215,9 @@ struct Model {
   InterfaceParams iface;              // -interface_type, -interface_mu_top/bottom
   ContactParams contact;              // stacked-body contact at chain nodes
   std::vector<ParticleLoad> loads;    // surface loads, every rank alike (particles.hpp)
-  Shrinkage shrink;                   // the degrading zone (degradation.hpp)
+  // -dim 3: the same entries extruded (traction times the z spacing, tface and lp in 3D)
+  std::vector<ParticleLoadT<3>> loads3;
+  Shrinkage shrink; // the degrading zone (degradation.hpp)
 };
 
 struct Simulation {
@@ -284,6 +286,14 @@ struct Simulation {
     PetscFunctionReturn(0);
   }
 };
+
+// Setup steps SimulationSetup and -dim 3's extrusion (extrude.cpp) share. The face tractions
+// (-bc_*_traction) onto the particles at the body's extreme toward each loaded face (the extreme
+// is reduced over sim.comm); the surface loads as a table every rank holds alike (sim.model.loads,
+// in particle-id order, each particle keeping its entry's index), gathered over comm (a list every
+// rank holds whole, as extrusion's plane: PETSC_COMM_SELF).
+PetscErrorCode ApplyFaceTractions(Simulation &sim, ParticleList &init);
+PetscErrorCode BuildLoadTable(Simulation &sim, ParticleList &init, MPI_Comm comm);
 
 // Setup: options, scene, materials, grid, particles.
 PetscErrorCode SimulationSetup(Simulation &sim);
