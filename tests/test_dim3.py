@@ -17,6 +17,8 @@ usage: test_dim3.py EXE OUTDIR
    (the unbalanced-force ratio divides by the mean nodal load, which the z faces' half-loaded
    nodes lower in 3D), so the bound is the position bound, not round-off.
 The bar between free z faces against the closed form of uniaxial stress (only 3D has it).
+   Checkpoint and restart in 3D against the uninterrupted run: bit for bit on 1 rank, 1e-10 on 2
+   and 4 (1x1x4) ranks; a restart that changes -depth is refused.
 3. The summary and the particles file say 3D: cells [4, 18, 8], the partition's three
    directions, XYZ geometry in the .xmf.
 The 1e-10 bounds: round-off after a few hundred steps of sums that differ in order between 2D and
@@ -155,6 +157,38 @@ slope_y = np.polyfit(x0[:, 1], u[:, 1], 1)[0]
 slope_z = np.polyfit(x0[:, 2], u[:, 2], 1)[0]
 c.le("uniaxial bar: du_y/dy against -nu t / E", abs(slope_y / (-nu * t / E) - 1), 1e-4)
 c.le("uniaxial bar: du_z/dz against -nu t / E", abs(slope_z / (-nu * t / E) - 1), 1e-4)
+
+# checkpoint and restart in 3D: resumed from step 100 on 1 rank (bit for bit), on 2 ranks and from
+# step 200 on 4 ranks as 1x1x4 (the particles sent to their cells' owners), against the
+# uninterrupted 300-step run; a restart that changes -depth is refused, naming it
+R = BASE + ["-tol", "1e-30", "-max_steps", "300", "-ramp_steps", "100"] + D3
+run(exe, 1, R, out + "/restart_full", capped=True)
+run(exe, 1, R + ["-checkpoint_every", "100"], out + "/restart_ck", capped=True)
+ids0, f0 = particles(out + "/restart_full", FIELDS)
+for label, np_, ck, grid in [("1 rank", 1, 100, []), ("2 ranks", 2, 100, []),
+                             ("4 ranks 1x1x4", 4, 200, ["-da_processors_x", "1",
+                                                        "-da_processors_y", "1",
+                                                        "-da_processors_z", "4"])]:
+    tag = label.replace(" ", "_")
+    run(exe, np_, R + grid + ["-restart", f"{out}/restart_ck/checkpoint_{ck}.h5"],
+        out + "/restart_" + tag, capped=True)
+    ids, f = particles(out + "/restart_" + tag, FIELDS)
+    same = len(ids) == len(ids0) and np.all(ids == ids0)
+    c.check(f"restart on {label} from step {ck}: the same particles", same)
+    if not same:
+        continue
+    dx = np.abs(f["position"] - f0["position"]).max() / H
+    ds = np.abs(f["stress"] - f0["stress"]).max() / np.abs(f0["stress"]).max()
+    if np_ == 1:
+        c.check(f"restart on {label}: bit for bit", dx == 0 and ds == 0, f"{dx:g} {ds:g}")
+    else:
+        c.le(f"restart on {label}: positions (/H)", dx, 1e-10)
+        c.le(f"restart on {label}: stresses (/max |stress|)", ds, 1e-10)
+rc, log = run(exe, 1, BASE + ["-dim", "3", "-depth", "0.25", "-restart",
+                              f"{out}/restart_ck/checkpoint_100.h5"],
+              out + "/restart_depth", expect_ok=False)
+c.check("restart with another -depth refused, naming it", rc == 1 and "-depth" in log,
+        log.strip().splitlines()[0] if log.strip() else "")
 
 # 2. converged, against the closed form and the 2D run
 run(exe, 1, BASE, out + "/2d_conv")

@@ -12,6 +12,7 @@
 #include "pmpm/io/output.hpp"
 #include "pmpm/io/parallel_h5.hpp"
 #include "pmpm/core/particle_records.hpp"
+#include "pmpm/model/extrude.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -705,15 +706,18 @@ PetscErrorCode ReadStatsLoads(Simulation &sim, PetscViewer v, const std::string 
 
 // On the same rank count each rank takes back its own block of particles: the grid must be
 // partitioned as when the checkpoint was written (-balance run may have moved it since setup).
+// -dim 3 (no rebuild there: the partition is PETSc's or -da_processors_x/y/z): *moved says the
+// particles must be sent to their cells' owners, as on another rank count.
 PetscErrorCode ReadPartition(Simulation &sim, PetscViewer v, const std::string &file,
-                             PetscInt ranks) {
+                             PetscInt ranks, bool *moved) {
   std::vector<double> saved;
   std::vector<PetscInt> part;
   PetscFunctionBeginUser;
   PetscCall(CheckpointReadArray(v, "partition", saved));
   PetscCall(BalancePartition(sim, part));
   const std::vector<PetscInt> want(saved.begin(), saved.end());
-  if (ranks == sim.size && want != part) {
+  *moved = ranks != sim.size || (sim.set.dim == 3 && want != part);
+  if (ranks == sim.size && want != part && sim.set.dim == 2) {
     PetscCheck(want.size() >= 2 && (PetscInt)want.size() == 2 + want[0] + want[1] &&
                    want[0] * want[1] == sim.size,
                sim.comm, PETSC_ERR_FILE_UNEXPECTED,
@@ -760,7 +764,7 @@ PetscErrorCode ReadParticleField(Simulation &sim, PetscViewer v, const std::stri
 // /particles: this rank's own block on the same rank count (bit for bit), else an even split
 // sent on to the ranks owning the particles' cells.
 PetscErrorCode ReadParticles(Simulation &sim, PetscViewer v, const std::string &file,
-                             PetscInt ranks) {
+                             PetscInt ranks, bool moved) {
   const char *F = file.c_str();
   std::vector<double> counts;
   PetscFunctionBeginUser;
@@ -791,7 +795,12 @@ PetscErrorCode ReadParticles(Simulation &sim, PetscViewer v, const std::string &
     PetscCall(ReadParticleField(sim, v, file, f, total, nloc, w, off, rec));
     off += f.bs;
   }
-  if (ranks != sim.size) PetscCall(RecordsRedistribute(sim.comm, sim.grid, w, rec));
+  if (moved) {
+    if (sim.set.dim == 3)
+      PetscCall(RecordsRedistribute(sim.comm, sim.grid3, w, rec));
+    else
+      PetscCall(RecordsRedistribute(sim.comm, sim.grid, w, rec));
+  }
   PetscCall(ParticlesUnpack(sim.parts, rec));
   PetscCall(SimulationIndexParticles(sim));
   PetscCall(PetscViewerHDF5PopGroup(v));
@@ -882,9 +891,11 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
   PetscCall(ReadRun(sim, v, file, ranks, &stage, &in_stage));
   PetscCall(PetscViewerHDF5PushGroup(v, kRun));
   PetscCall(ReadStatsLoads(sim, v, file));
-  PetscCall(ReadPartition(sim, v, file, ranks));
+  bool moved = false;
+  PetscCall(ReadPartition(sim, v, file, ranks, &moved));
   PetscCall(PetscViewerHDF5PopGroup(v));
-  PetscCall(ReadParticles(sim, v, file, ranks));
+  if (sim.set.dim == 3) PetscCall(ExtrudeLoads(sim)); // the table just read, per z spacing
+  PetscCall(ReadParticles(sim, v, file, ranks, moved));
   for (size_t k = 0; k < sim.chains.size(); ++k) PetscCall(ReadChain(sim, v, file, k));
   PetscCall(ReadFrames(sim, v, file));
   // the scene's own state

@@ -209,6 +209,16 @@ PetscErrorCode BalancePartition(Simulation &sim, std::vector<PetscInt> &part) {
   PetscInt px, py;
   const PetscInt *lx, *ly;
   PetscFunctionBeginUser;
+  if (sim.set.dim == 3) { // -dim 3: px, py, pz, then the node counts per direction
+    PetscInt p[3];
+    const PetscInt *l[3];
+    PetscCall(DMDAGetInfo(sim.grid3.da, nullptr, nullptr, nullptr, nullptr, &p[0], &p[1], &p[2],
+                          nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
+    PetscCall(DMDAGetOwnershipRanges(sim.grid3.da, &l[0], &l[1], &l[2]));
+    part = {p[0], p[1], p[2]};
+    for (int d = 0; d < 3; ++d) part.insert(part.end(), l[d], l[d] + p[d]);
+    PetscFunctionReturn(0);
+  }
   PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr, nullptr,
                         nullptr, nullptr, nullptr, nullptr, nullptr));
   PetscCall(DMDAGetOwnershipRanges(sim.grid.da, &lx, &ly, nullptr));

@@ -27,9 +27,6 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
       {s.fbar, "-fbar"},
       {s.transfer != Transfer::Flip, "-transfer apic (use -transfer flip)"},
       {s.shape == ShapeKind::CPGIMP, "-shape cpgimp (use -shape pmpm or linear)"},
-      {s.checkpoint_every > 0 || s.checkpoint_stage_end, "checkpoints (-checkpoint_every, "
-                                                         "-checkpoint_stage_end)"},
-      {!s.restart.empty(), "-restart"},
       {sim.balance.mode == BalanceMode::Run,
        "-balance run (the 3D partition is PETSc's or -da_processors_x/y/z)"},
       {!sim.model.chain_specs.empty(), "membrane chains"},
@@ -63,6 +60,13 @@ PetscErrorCode GeneratePlane(Simulation &sim, ParticleList &plane) {
   // half-size with their z components
   PetscCall(ApplyFaceTractions(sim, plane));
   PetscCall(BuildLoadTable(sim, plane, PETSC_COMM_SELF));
+  PetscCall(ExtrudeLoads(sim));
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode ExtrudeLoads(Simulation &sim) {
+  PetscFunctionBeginUser;
   const double dz = sim.set.h / sim.set.ppc;
   sim.model.loads3.resize(sim.model.loads.size());
   for (size_t k = 0; k < sim.model.loads.size(); ++k) {
@@ -78,6 +82,8 @@ PetscErrorCode GeneratePlane(Simulation &sim, ParticleList &plane) {
   }
   PetscFunctionReturn(0);
 }
+
+namespace {
 
 // The plane's particles extruded into the z cells this rank owns, each kept only where this rank
 // owns its (x, y) cell too.

@@ -64,6 +64,7 @@ PetscErrorCode BalanceRebuildGrid(Simulation &sim, PetscInt px, PetscInt py,
                                   const std::vector<PetscInt> &lx, const std::vector<PetscInt> &ly);
 // The current partition as [px, py, lx..., ly...] (a checkpoint keeps it).
 PetscErrorCode BalancePartition(Simulation &sim, std::vector<PetscInt> &part);
+// (-dim 3: px, py, pz and lx, ly, lz of the 3D grid.)
 
 // The "partition" and "balance" blocks of summary.json (rank-collective): process grid, owned
 // nodes per rank column and row, the cell ranges they own, particles per rank and the imbalance

@@ -13,7 +13,7 @@
 // What the 3D step does not run yet is refused before the run, by name (ExtrusionCheck): the
 // step's hooks (chains, the colour interface, F-bar, an imposed eigenstrain, cpGIMP's support
 // check), -solver newton, -geometry axisymmetric, -transfer apic, supports inside the box,
-// checkpoints, restarts and -balance run, and scenes whose results read the plane only
+// -balance run, and scenes whose results read the plane only
 // (Scene::extrudes). Face tractions extrude: the plane's load table (per unit depth) becomes
 // sim.model.loads3, each entry times the particles' z spacing, shared by a particle's z copies.
 #pragma once
@@ -27,5 +27,9 @@ PetscErrorCode ExtrusionCheck(Simulation &sim);
 // -dim 3: the 3D grid (sim.grid3, its memory checked first), the swarm on it and this rank's
 // extruded particles, indexed. In place of the 2D grid and particles (simulation.cpp).
 PetscErrorCode ExtrudedGridAndParticles(Simulation &sim, const MemoryCheck &mem);
+
+// sim.model.loads3 from sim.model.loads (per unit depth): each entry for a particle of z spacing
+// h / ppc. At setup, and after a restart read the table.
+PetscErrorCode ExtrudeLoads(Simulation &sim);
 
 } // namespace pmpm
