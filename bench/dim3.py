@@ -41,6 +41,22 @@ CASES = {
 }
 PHASES = ("P2G", "G2P", "StressUpdate", "GridUpdate")
 BASE_RSS_KB = 48 * 1024
+# Particle state one 3D update must move at least (bytes): read x, v, lp (3 each), F (9), stress
+# (6), mass, vol0, weight, eps_p, mat (29 values); write x, v (3 each), F (9), stress (6), vol,
+# eps_p (23); the velocity gradient written by G2P and read by the stress update (9 + 9):
+# 70 x 8 = 560 B. 2D: 404 B (docs/benchmarks/run.md, section 2).
+STATE_BYTES = {2: 404, 3: 560}
+
+
+def triad():
+    """This machine's STREAM triad bandwidth (bench/stream.c, 1 thread, 2^25 doubles, best of 10),
+    bytes per second."""
+    exe = OUT / "stream"
+    OUT.mkdir(parents=True, exist_ok=True)
+    subprocess.run(["gcc", "-O3", "-o", str(exe), str(ROOT / "bench" / "stream.c")], check=True)
+    out = subprocess.run([str(exe), "25", "10"], stdout=subprocess.PIPE, text=True,
+                         check=True).stdout
+    return float(re.search(r"triad_GBps (\S+)", out).group(1)) * 1e9
 
 
 def run(exe, label, tag):
@@ -65,10 +81,13 @@ def run(exe, label, tag):
     return {"n": n, "step_s": relax / steps, "phases": phases, "rss_kb": rss, "steps": steps}
 
 
-def row(label, r):
+def row(label, r, bw):
     ph = " | ".join(f"{r['phases'][p]:.1f}" for p in PHASES)
+    dim = 3 if label.startswith("3D") else 2
+    per = r["step_s"] / r["n"]  # seconds per particle update
     return (f"| {label} | {r['n']:,} | {r['steps']} | {r['step_s'] * 1e3:.1f} | {ph} | "
-            f"{r['n'] / r['step_s'] / 1e6:.2f} | {r['rss_kb'] / 1024:.0f} | "
+            f"{r['n'] / r['step_s'] / 1e6:.2f} | {per * bw:.0f} | "
+            f"{per * bw / STATE_BYTES[dim]:.1f} | {r['rss_kb'] / 1024:.0f} | "
             f"{(r['rss_kb'] - BASE_RSS_KB) * 1024 / r['n']:.0f} |")
 
 
@@ -78,6 +97,7 @@ def main():
     ap.add_argument("--baseline", default="20c9024")
     a = ap.parse_args()
     exe = ROOT / "build" / "pmpm"
+    bw = triad()
     rows = []
     two = list(CASES)[0]
     if not a.quick:
@@ -87,15 +107,15 @@ def main():
             b.append(run(base, two, f"2d_base_{k}"))
             c.append(run(exe, two, f"2d_{k}"))
         med = lambda rs: sorted(rs, key=lambda r: r["step_s"])[1]  # noqa: E731
-        rows.append(row(f"{two}, baseline {a.baseline}", med(b)))
-        rows.append(row(f"{two}, this build", med(c)))
+        rows.append(row(f"{two}, baseline {a.baseline}", med(b), bw))
+        rows.append(row(f"{two}, this build", med(c), bw))
         ratio = med(c)["step_s"] / med(b)["step_s"]
     else:
-        rows.append(row(f"{two}, this build", run(exe, two, "2d_0")))
+        rows.append(row(f"{two}, this build", run(exe, two, "2d_0"), bw))
         ratio = None
     for label in list(CASES)[1:(2 if a.quick else 3)]:
         rows.append(row(label, run(exe, label, label.replace(" ", "").replace(",", "_")
-                                   .replace("/", "").replace("=", ""))))
+                                   .replace("/", "").replace("=", "")), bw))
     text = "\n".join([
         MARK_BEGIN, "## The explicit step in 3D: time and memory", "",
         "`/usr/bin/python3 bench/dim3.py`: the column (`options/column.opts`, width 1 m, linear "
@@ -103,10 +123,24 @@ def main():
         "(`-dim 3 -depth D`, 8 particles a cell). Phases in ms per step from `-log_view`; "
         "memory is the peak resident size and, per particle, that less the 48 MB of a rank's "
         "libraries (it includes the grid and the particles file's output buffers).", "",
+        f"Bandwidth: STREAM triad {bw / 1e9:.1f} GB/s (bench/stream.c, 1 thread). "
+        "`triad bytes` is what a purely bandwidth-bound kernel would move in the time of one "
+        "particle update; `x state` divides it by the particle state an update must move at "
+        f"least ({STATE_BYTES[2]} B in 2D, {STATE_BYTES[3]} B in 3D: positions, velocities, "
+        "half-sizes, F, stress, scalars, and the velocity gradient between G2P and the stress "
+        "update). The bandwidth bound is that state over the triad bandwidth; the step runs "
+        "that many times slower than it.", "",
         "| run | particles | steps | ms / step | P2G | G2P | StressUpdate | GridUpdate | "
-        "M particle-updates / s | peak RSS (MB) | B / particle |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        "M particle-updates / s | triad bytes / update | x state | peak RSS (MB) | B / particle |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
         *rows, "",
+        "In 3D a uGIMP block straddling cell faces touches 3 x 3 x 3 = 27 nodes with 3 components "
+        "(P2G scatters mass, momentum and force into 10 values a node; G2P gathers 6), against 9 "
+        "in 2D: three times the stencil work for 1.4 times the particle state, so the 3D step is "
+        "further from the bandwidth bound than the 2D one, and the time goes where 2D's does "
+        "(docs/benchmarks/run.md, section 2): the scatter-add into the grid and the gather from "
+        "it. No lean plain-array 3D loop was written yet: the 2D comparison of pmpm against its "
+        "own leaner cycle is docs/benchmarks/lean_cycle.md.",
         (f"2D this build / baseline, ms per step (medians of 3, alternated): {ratio:.3f}."
          if ratio else "(--quick: no baseline.)"),
         MARK_END, ""])

@@ -120,6 +120,15 @@ for name, opts in [("musl", ["-musl"]), ("mpm", ["-shape", "mpm"]),
     compare_to_2d(name + " 3D", particles(out + "/2d_" + tag, FIELDS),
                   particles(out + "/3d_" + tag, FIELDS))
 
+# two layers of a stiffness and weight contrast (the layers scene, E 1e7 over 1e6, gamma 2e4
+# over 1e4: two materials, -inertia_scaling wave_speed), 2 ranks
+LAY = ["-options_file", "options/layers.opts", "-cell_size", "0.0625", "-mat_top_E", "1e6",
+       "-mat_top_gamma", "1e4"] + FIXED
+run(exe, 1, LAY, out + "/layers_2d", capped=True)
+run(exe, 2, LAY + D3, out + "/layers_3d", capped=True)
+compare_to_2d("layers 3D (2 ranks)", particles(out + "/layers_2d", FIELDS),
+              particles(out + "/layers_3d", FIELDS))
+
 # the bar under end traction (a face load, the xmax face), 2 ranks
 BAR = ["-options_file", "options/bar.opts", "-tol", "1e-30", "-max_steps", "400"]
 run(exe, 1, BAR, out + "/bar_2d", capped=True)

@@ -39,6 +39,7 @@ class LayersScene final : public Scene {
   }
 
 public:
+  bool extrudes() const override { return true; } // CompareVertical reads any dimension
   PetscErrorCode setup(Simulation &sim) override {
     PetscBool w_set = PETSC_FALSE;
     PetscFunctionBeginUser;
