@@ -26,7 +26,7 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
       {s.geometry != Geometry::PlaneStrain, "-geometry axisymmetric"},
       {s.fbar, "-fbar"},
       {s.transfer != Transfer::Flip, "-transfer apic (use -transfer flip)"},
-      {s.shape == ShapeKind::CPGIMP, "-shape cpgimp (use -shape pmpm or linear)"},
+      {s.shape == ShapeKind::CPGIMP, "-shape cpgimp (use -shape pmpm or mpm)"},
       {sim.balance.mode == BalanceMode::Run,
        "-balance run (the 3D partition is PETSc's or -da_processors_x/y/z)"},
       {!sim.model.chain_specs.empty(), "membrane chains"},
@@ -38,6 +38,24 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
   sim.balance.mode = BalanceMode::None;
   PetscInt nz;
   PetscCall(CheckCells(sim.comm, "-depth", s.depth, s.h, &nz));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ExtrudeLoads(Simulation &sim) {
+  PetscFunctionBeginUser;
+  const double dz = sim.set.h / sim.set.ppc;
+  sim.model.loads3.resize(sim.model.loads.size());
+  for (size_t k = 0; k < sim.model.loads.size(); ++k) {
+    const ParticleLoad &L = sim.model.loads[k];
+    ParticleLoadT<3> &L3 = sim.model.loads3[k];
+    for (int d = 0; d < DIM; ++d) {
+      L3.traction[d] = L.traction[d] * dz;
+      L3.tface[d] = L.tface[d];
+      L3.lp[d] = L.lp[d];
+    }
+    L3.traction[2] = L3.tface[2] = 0;
+    L3.lp[2] = 0.5 * dz;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -63,27 +81,6 @@ PetscErrorCode GeneratePlane(Simulation &sim, ParticleList &plane) {
   PetscCall(ExtrudeLoads(sim));
   PetscFunctionReturn(0);
 }
-} // namespace
-
-PetscErrorCode ExtrudeLoads(Simulation &sim) {
-  PetscFunctionBeginUser;
-  const double dz = sim.set.h / sim.set.ppc;
-  sim.model.loads3.resize(sim.model.loads.size());
-  for (size_t k = 0; k < sim.model.loads.size(); ++k) {
-    const ParticleLoad &L = sim.model.loads[k];
-    ParticleLoadT<3> &L3 = sim.model.loads3[k];
-    for (int d = 0; d < DIM; ++d) {
-      L3.traction[d] = L.traction[d] * dz;
-      L3.tface[d] = L.tface[d];
-      L3.lp[d] = L.lp[d];
-    }
-    L3.traction[2] = L3.tface[2] = 0;
-    L3.lp[2] = 0.5 * dz;
-  }
-  PetscFunctionReturn(0);
-}
-
-namespace {
 
 // The plane's particles extruded into the z cells this rank owns, each kept only where this rank
 // owns its (x, y) cell too.
@@ -131,6 +128,15 @@ PetscErrorCode ExtrudedGridAndParticles(Simulation &sim, const MemoryCheck &mem)
   {
     ParticleList plane;
     PetscCall(GeneratePlane(sim, plane));
+    // ids: 2D id x (z cells x ppc) + z index, within PetscInt's range
+    double top = 0;
+    for (const ParticleInit &q : plane) top = std::fmax(top, static_cast<double>(q.pid));
+    const double nz = static_cast<double>(ncell[2] * sim.set.ppc);
+    PmpmCheckInput((top + 1) * nz <= static_cast<double>(PETSC_MAX_INT), sim.comm,
+                   PETSC_ERR_ARG_OUTOFRANGE,
+                   "-dim 3: %.0f particle ids (the plane's %.0f x %.0f along z) exceed PetscInt's "
+                   "range; reduce -depth or use a PETSc built with 64-bit indices",
+                   (top + 1) * nz, top + 1, nz);
     ParticleListT<3> init;
     Extrude(sim, plane, init);
     plane.clear();
