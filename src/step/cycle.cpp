@@ -2,7 +2,8 @@
 // function per phase. Each phase is a plain kernel from transfers.cpp or the materials' batch
 // update; PETSc appears only for the ghost exchanges and the migration. The optional physics
 // (chains, the colour interface, F-bar, an imposed eigenstrain, cpGIMP's support check) attach to
-// the phases as hooks (step_hooks.hpp, one file each in src/step/).
+// the phases as hooks (step_hooks.hpp, one file each in src/step/). The phases are templates on
+// the dimension D: Step runs them in 2D, or in 3D under -dim 3 (extrude.hpp), where no hook runs.
 #include "pmpm/step/cycle.hpp"
 #include "pmpm/core/shape_cpgimp.hpp"
 #include "pmpm/step/step_hooks.hpp"

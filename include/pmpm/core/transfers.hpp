@@ -3,10 +3,10 @@
 //   grid_update  nodal momentum balance with damping and boundary conditions (eq. 1, 2)
 //   g2p          particle velocity, position and velocity gradient          (eq. 4, 5, 20)
 // They touch no PETSc object; cycle.cpp calls them between the ghost exchanges. Each is a
-// template on the dimension D (2 or 3, deduced from the grid view); the driver runs D = DIM = 2,
-// and the 2D results are those of the 2D kernels written out, bit for bit (developer guide,
-// "Dimensions"). The particle arrays of ParticleView hold D (x, v, lp), D*D (F, B) and NStress<D>
-// (stress) values per particle.
+// template on the dimension D (2 or 3, deduced from the grid view); the step runs D = 2, or D = 3
+// under -dim 3, and the 2D results are those of the 2D kernels written out, bit for bit (developer
+// guide, "Dimensions"). The particle arrays of ParticleView hold D (x, v, lp), D*D (F, B) and
+// NStress<D> (stress) values per particle.
 #pragma once
 #include "pmpm/core/grid.hpp"
 #include "pmpm/core/particles.hpp"
