@@ -106,11 +106,12 @@ for name, opts in MATERIALS.items():
         ep = particles(out + "/3d_" + name, ("eps_p",))[1]["eps_p"]
         c.ge(f"{name} 3D: the base yielded (max eps_p)", float(np.max(ep)), 1e-6)
 
-# the method's variants on one rank: MUSL, standard MPM (-shape mpm), local damping, FIRE (30
-# steps: its restarts are discrete events that turn round-off into 1e-8 differences later on,
-# as kinetic-damping resets do in test_rank_invariance), and a surcharge (-bc_ymax_traction: the
-# extruded load table)
+# the method's variants on one rank: MUSL, standard MPM (-shape mpm), APIC (its B_p in 3x3),
+# local damping, FIRE (30 steps: its restarts are discrete events that turn round-off into 1e-8
+# differences later on, as 2D shows between 1 and 2 ranks: 9e-10 after 300 steps), and a
+# surcharge (-bc_ymax_traction: the extruded load table)
 for name, opts in [("musl", ["-musl"]), ("mpm", ["-shape", "mpm"]),
+                   ("apic", ["-transfer", "apic"]),
                    ("local damping", ["-damping", "local"]),
                    ("fire", ["-damping", "fire", "-max_steps", "30"]),
                    ("surcharge", ["-bc_ymax_traction", "0,-2e4"])]:

@@ -25,7 +25,6 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
       {s.solver != "relaxation", "-solver newton (use -solver relaxation)"},
       {s.geometry != Geometry::PlaneStrain, "-geometry axisymmetric"},
       {s.fbar, "-fbar"},
-      {s.transfer != Transfer::Flip, "-transfer apic (use -transfer flip)"},
       {s.shape == ShapeKind::CPGIMP, "-shape cpgimp (use -shape pmpm or mpm)"},
       {sim.balance.mode == BalanceMode::Run,
        "-balance run (the 3D partition is PETSc's or -da_processors_x/y/z)"},
@@ -124,6 +123,7 @@ PetscErrorCode ExtrudedGridAndParticles(Simulation &sim, const MemoryCheck &mem)
   PetscCall(CheckProcessGrid(sim, 3, ncell));
   PetscCall(CheckMemoryExtruded(sim, mem, ncell[2], 0));
   PetscCall(GridCreate<3>(sim.comm, sim.set.h, origin, ncell, 1, 0, sim.grid3));
+  sim.parts.affine = sim.set.transfer == Transfer::Apic; // APIC's B (affine.hpp)
   PetscCall(ParticlesCreate(sim.grid3, sim.parts));
   {
     ParticleList plane;

@@ -12,7 +12,7 @@
 //
 // What the 3D step does not run yet is refused before the run, by name (ExtrusionCheck): the
 // step's hooks (chains, the colour interface, F-bar, an imposed eigenstrain, cpGIMP's support
-// check), -solver newton, -geometry axisymmetric, -transfer apic, supports inside the box,
+// check), -solver newton, -geometry axisymmetric, -shape cpgimp, supports inside the box,
 // -balance run, and scenes whose results read the plane only
 // (Scene::extrudes). Face tractions extrude: the plane's load table (per unit depth) becomes
 // sim.model.loads3, each entry times the particles' z spacing, shared by a particle's z copies.
