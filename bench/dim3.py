@@ -17,17 +17,15 @@ a rank's libraries take, per particle. The 2D rows alternate the baseline and th
 times each (the machine may be shared): medians.
 """
 import argparse
-import json
 import re
-import shutil
-import statistics
 import subprocess
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "bench"))
-from benchmarks_md import MPI_ENV, build_revision, publish  # noqa: E402
+from benchmarks_md import build_revision, launch, publish  # noqa: E402
+from run import parse_log  # noqa: E402
 
 OUT = ROOT / "bench" / "out" / "dim3"
 MARK_BEGIN, MARK_END = "<!-- dim3.py begin -->", "<!-- dim3.py end -->"
@@ -60,25 +58,18 @@ def triad():
 
 
 def run(exe, label, tag):
+    """One fixed-step run on one rank under GNU time (its peak resident size)."""
     extra, steps = CASES[label]
-    d = OUT / tag
-    if d.is_dir():
-        shutil.rmtree(d)
-    cmd = ["/usr/bin/time", "-f", "RSS_KB %M", str(exe)] + COLUMN + extra + \
-        ["-max_steps", str(steps), "-output_dir", str(d), "-quiet", "-log_view"]
-    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE,
-                       stderr=subprocess.STDOUT, text=True)
-    if p.returncode not in (0, 3):
-        print(p.stdout[-3000:])
-        sys.exit(f"pmpm failed: {' '.join(cmd)}")
-    n = json.loads((d / "summary.json").read_text())["particles"]
-    relax = float(re.search(r"^\s*\d+:\s+Relaxation:\s+(\S+)", p.stdout, re.M).group(1))
-    phases = {}
-    for ph in PHASES:
-        m = re.search(rf"^{ph}\s+\d+\s+\S+\s+(\S+)", p.stdout, re.M)
-        phases[ph] = float(m.group(1)) / steps * 1e3 if m else 0.0
-    rss = int(re.search(r"RSS_KB (\d+)", p.stdout).group(1))
-    return {"n": n, "step_s": relax / steps, "phases": phases, "rss_kb": rss, "steps": steps}
+    s, log = launch("/usr/bin/time", 1, ["-f", "RSS_KB %M", exe] + COLUMN + extra +
+                    ["-max_steps", steps, "-log_view"], OUT / tag)
+    if s is None:
+        print(log[-3000:])
+        sys.exit(f"pmpm failed: {label}")
+    stages, events = parse_log(log)
+    phases = {ph: events[ph]["max_s"] / steps * 1e3 if ph in events else 0.0 for ph in PHASES}
+    rss = int(re.search(r"RSS_KB (\d+)", log).group(1))
+    return {"n": s["particles"], "step_s": stages["Relaxation"] / steps, "phases": phases,
+            "rss_kb": rss, "steps": steps}
 
 
 def row(label, r, bw):

@@ -26,14 +26,13 @@ whole box in this estimate: 36.9 M particles), ranks as near-cubes of cells.
 import argparse
 import math
 import re
-import shutil
-import subprocess
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "bench"))
-from benchmarks_md import MPI_ENV, publish  # noqa: E402
+from benchmarks_md import launch, publish  # noqa: E402
+from run import parse_log  # noqa: E402
 
 OUT = ROOT / "bench" / "out" / "scaling3d"
 MARK_BEGIN, MARK_END = "<!-- scaling3d.py begin -->", "<!-- scaling3d.py end -->"
@@ -45,25 +44,19 @@ BW, LAT = 12.5e9, 2e-6  # the assumed cluster: bytes/s, seconds per message
 
 
 def run(np_, grid, steps, tag):
-    d = OUT / tag
-    if d.is_dir():
-        shutil.rmtree(d)
-    cmd = ["mpiexec", "-n", str(np_), str(ROOT / "build" / "pmpm")] + COLUMN + grid + \
-        ["-max_steps", str(steps), "-output_dir", str(d), "-quiet", "-log_view"]
-    p = subprocess.run(cmd, env=MPI_ENV, cwd=ROOT, stdout=subprocess.PIPE,
-                       stderr=subprocess.STDOUT, text=True)
-    if p.returncode not in (0, 3):
-        print(p.stdout[-3000:])
-        sys.exit(f"pmpm failed: {' '.join(cmd)}")
+    """One fixed-step run: the Relaxation stage's time, messages, their average length and
+    reductions (its -log_view summary line), and its events."""
+    s, log = launch(ROOT / "build" / "pmpm", np_, COLUMN + grid + ["-max_steps", steps,
+                                                                  "-log_view"], OUT / tag)
+    if s is None:
+        print(log[-3000:])
+        sys.exit(f"pmpm failed on {np_} ranks {' '.join(grid)}")
     m = re.search(r"^\s*\d+:\s+Relaxation:\s+(\S+)\s+\S+\s+\S+\s+\S+\s+(\S+)\s+\S+\s+(\S+)\s+\S+"
-                  r"\s+(\S+)", p.stdout, re.M)
-    ev = {}
-    for name in ("P2G", "G2P", "StressUpdate", "GridUpdate", "GhostAdd", "GhostScatter"):
-        e = re.search(rf"^{name}\s+(\d+)\s+\S+\s+(\S+)", p.stdout, re.M)
-        ev[name] = float(e.group(2)) if e else 0.0
-    n = int(re.search(r'"particles": (\d+)', (d / "summary.json").read_text()).group(1))
+                  r"\s+(\S+)", log, re.M)
+    _, events = parse_log(log)
+    ev = {name: e["max_s"] for name, e in events.items()}
     return {"time": float(m.group(1)), "messages": float(m.group(2)), "avg_len": float(m.group(3)),
-            "reductions": float(m.group(4)), "events": ev, "n": n, "steps": steps}
+            "reductions": float(m.group(4)), "events": ev, "n": s["particles"], "steps": steps}
 
 
 def halo_bytes(cells, parts):
@@ -104,9 +97,9 @@ def main():
     one = run(1, [], steps, "np1")
     ev = one["events"]
     nodes = (NCELL[0] + 1) * (NCELL[1] + 1) * (NCELL[2] + 1)
-    t_p = (ev["P2G"] + ev["G2P"] + ev["StressUpdate"]) / steps / one["n"]
-    t_n = ev["GridUpdate"] / steps / nodes
-    rows, checks = [], []
+    t_p = sum(ev.get(e, 0.0) for e in ("P2G", "G2P", "StressUpdate")) / steps / one["n"]
+    t_n = ev.get("GridUpdate", 0.0) / steps / nodes
+    rows, reductions = [], []
     for label, np_, grid in [("2 (2x1x1)", 2, ["-da_processors_x", "2", "-da_processors_y", "1",
                                                 "-da_processors_z", "1"]),
                              ("4 (2x2x1)", 4, ["-da_processors_x", "2", "-da_processors_y", "2",
@@ -118,7 +111,6 @@ def main():
         # the ghost exchanges' bytes per step over all ranks, from -log_view (messages x average
         # length), against the model summed over the ranks (each rank's own shared faces)
         measured = r["messages"] * r["avg_len"] / steps
-        sub = [NCELL[d] / parts[d] for d in range(3)]
         model = 0.0
         for d in range(3):
             if parts[d] > 1:
@@ -130,8 +122,8 @@ def main():
         model *= NDOF * 8
         rows.append(f"| {label} | {r['messages'] / steps:.1f} | {measured / 1e6:.2f} | "
                     f"{model / 1e6:.2f} | {r['reductions'] / steps:.2f} |")
-        checks.append((label, measured, model, r["reductions"] / steps, sub))
-    red = max(c[3] for c in checks)
+        reductions.append(r["reductions"] / steps)
+    red = max(reductions)
     # projection
     cells = (240, 240, 80)
     npart = cells[0] * cells[1] * cells[2] * 8

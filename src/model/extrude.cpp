@@ -35,9 +35,7 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
     PmpmCheckInput(!r.refused, sim.comm, PETSC_ERR_SUP, "-dim 3 does not run %s yet", r.what);
   // -balance setup (the default) does not balance a 3D grid yet: the summary says none
   sim.balance.mode = BalanceMode::None;
-  PetscInt nz;
-  PetscCall(CheckCells(sim.comm, "-depth", s.depth, s.h, &nz));
-  PetscFunctionReturn(0);
+  PetscFunctionReturn(0); // -depth in whole cells: ExtrudedGridAndParticles, which comes next
 }
 
 PetscErrorCode ExtrudeLoads(Simulation &sim) {

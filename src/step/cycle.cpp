@@ -306,9 +306,9 @@ PetscErrorCode StepPhases(StepStateT<D> &S, const FireMix &fire, const ActiveHoo
   PetscFunctionReturn(0);
 }
 
-// -dim 3: the step in 3D, its statistics handed on in the report's 2D form (the z components
-// of the node and the particle that report a problem are kept in the run state: the reduction
-// and the messages read x and y).
+// -dim 3: the step in 3D, its statistics handed on in the report's 2D form (the z of the node of
+// the largest unbalanced force is kept in the run state; the reduction and the messages read x
+// and y).
 PetscErrorCode StepPhases3(Simulation &sim, const Load &load, double dt, const FireMix &fire,
                            const ActiveHooks &h, StepReport &rep) {
   LoadT<3> load3;
@@ -321,31 +321,12 @@ PetscErrorCode StepPhases3(Simulation &sim, const Load &load, double dt, const F
   load3.gdir[2] = 0; // the 2D scene's gravity, in its plane
   StepStateT<3> S(sim, load3, dt, rep, gs, ps);
   PetscCall(StepPhases(S, fire, h));
-  GridStats &g = rep.grid;
-  g.max_unbalanced = gs.max_unbalanced;
-  g.sum_ext = gs.sum_ext;
-  g.n_ext = gs.n_ext;
-  g.kinetic = gs.kinetic;
-  g.support_power = gs.support_power;
-  g.power = gs.power;
-  g.mv2 = gs.mv2;
-  g.f2m = gs.f2m;
-  G2PStats &p = rep.g2p;
-  p.max_c = ps.max_c;
-  p.max_v = ps.max_v;
-  p.max_speed = ps.max_speed;
-  p.kinetic = ps.kinetic;
-  p.weight_power = ps.weight_power;
-  p.left_rank = ps.left_rank;
-  p.bad = ps.bad;
-  p.bad_pid = ps.bad_pid;
-  p.bad_what = ps.bad_what;
-  p.has_elastic = ps.has_elastic;
-  p.elastic = ps.elastic;
+  static_cast<GridSums &>(rep.grid) = gs; // the scalars whole, the vectors' x and y
+  static_cast<G2PSums &>(rep.g2p) = ps;
   for (int d = 0; d < DIM; ++d) {
-    g.max_at[d] = gs.max_at[d];
-    g.support_force[d] = gs.support_force[d];
-    p.bad_x[d] = ps.bad_x[d];
+    rep.grid.max_at[d] = gs.max_at[d];
+    rep.grid.support_force[d] = gs.support_force[d];
+    rep.g2p.bad_x[d] = ps.bad_x[d];
   }
   sim.run.local_unbalanced_at[2] = gs.max_at[2];
   PetscFunctionReturn(0);

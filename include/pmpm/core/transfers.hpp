@@ -137,18 +137,22 @@ template <int D> struct GridUpdateParamsT {
 };
 using GridUpdateParams = GridUpdateParamsT<DIM>;
 
-template <int D> struct GridStatsT {
-  double max_unbalanced = 0;    // max over nodes with mass of |f_int + f_ext| (free dofs only)
-  double max_at[D] = {};        // the node where it is (this rank's)
-  double sum_ext = 0;           // sum of |f_ext| over nodes with a load
-  double n_ext = 0;             // number of those nodes
-  double kinetic = 0;           // nodal kinetic energy 1/2 m v^2 after the update
-  double support_force[D] = {}; // sum of weight f over the prescribed dofs (this rank)
-  double support_power = 0; // power of the supports on the body, -sum f v_prescribed (this rank)
+// The grid update's report: its scalars (GridSums, the same in any dimension: the 3D step hands
+// them on to the 2D report whole, cycle.cpp) and its D-vectors.
+struct GridSums {
+  double max_unbalanced = 0; // max over nodes with mass of |f_int + f_ext| (free dofs only)
+  double sum_ext = 0;        // sum of |f_ext| over nodes with a load
+  double n_ext = 0;          // number of those nodes
+  double kinetic = 0;        // nodal kinetic energy 1/2 m v^2 after the update
+  double support_power = 0;  // power of the supports on the body, -sum f v_prescribed (this rank)
   // over the free dofs of every body (this rank): the power of the nodal forces over the step,
   // sum f . (v_old + v_new) / 2 (not counting local damping, contact, friction or PIC), and
   // sum m v_new^2 and sum f^2 / m (FIRE's norms)
   double power = 0, mv2 = 0, f2m = 0;
+};
+template <int D> struct GridStatsT : GridSums {
+  double max_at[D] = {};        // the node of max_unbalanced (this rank's)
+  double support_force[D] = {}; // sum of weight f over the prescribed dofs (this rank)
 };
 using GridStats = GridStatsT<DIM>;
 
@@ -179,7 +183,8 @@ template <int D> struct G2PParamsT {
 };
 using G2PParams = G2PParamsT<DIM>;
 
-template <int D> struct G2PStatsT {
+// G2P's report: its scalars (G2PSums, as GridSums) and the position of the first bad particle.
+struct G2PSums {
   double max_c = 0, max_v = 0; // max_p c_p and max_p |v_p|
   double max_speed = 0;        // max_c + max_v (bounds c_p + |v_p|; the next stable step)
   double kinetic = 0;          // particle kinetic energy (APIC: with the affine part)
@@ -187,10 +192,12 @@ template <int D> struct G2PStatsT {
   PetscInt left_rank = 0;      // particles now centred outside this rank's cells
   PetscInt bad = 0;            // particles with J <= 0, a non-finite value, or off the grid
   PetscInt bad_pid = -1;       // the first such particle
-  double bad_x[D] = {};
   const char *bad_what = "";
   bool has_elastic = false; // G2PParams::energy given: elastic holds this rank's sum
   double elastic = 0;
+};
+template <int D> struct G2PStatsT : G2PSums {
+  double bad_x[D] = {}; // where bad_pid is
 };
 using G2PStats = G2PStatsT<DIM>;
 
