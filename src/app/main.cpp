@@ -45,6 +45,7 @@ struct MeshRun {
   double h = 0;
   DesignRecord design;
   std::vector<int> capped;
+  bool newton = false; // -solver newton (how a capped stage ended)
   bool help = false;
 };
 using Judge = std::function<std::string(const MeshRun &)>;
@@ -96,6 +97,7 @@ static PetscErrorCode RunScene(double h, bool estimating, bool aside, const Judg
   PetscCall(sim.scene->results(sim, results));
   mr.h = sim.set.h;
   mr.capped = sim.run.capped_stages;
+  mr.newton = sim.set.solver == "newton";
   PetscCall(sim.scene->design(sim, mr.design));
   PetscCall(OutputPrepareDirectory(sim));
   PetscCall(OutputParticles(sim, "particles.h5"));
@@ -166,7 +168,7 @@ static PetscErrorCode Run(int *code) {
     for (const MeshRun &m : all) {
       h.push_back(m.h);
       d.push_back(m.design);
-      c.push_back({m.h, m.capped});
+      c.push_back({m.h, m.capped, m.newton});
     }
     a = assess(h, d, c, est.order);
     return design_json(a);

@@ -135,7 +135,10 @@ PetscErrorCode OutputParticles(Simulation &sim, const std::string &h5name) {
   PetscCall(WriteRowsCollective(sim.comm, gid, "volume0", n, 1, P.vol0));
   if (sim.set.shape == ShapeKind::CPGIMP) { // the block the weights see: cpGIMP's deformed one
     for (PetscInt p = 0; p < n; ++p)
-      CPGIMPShape::half(P.lp + p * D, P.F + p * D * D, &derived[p * D]);
+      if (D == 3)
+        CPGIMPShape::half<3>(P.lp + p * D, P.F + p * D * D, &derived[p * D]);
+      else
+        CPGIMPShape::half<2>(P.lp + p * D, P.F + p * D * D, &derived[p * D]);
     PetscCall(WriteRowsCollective(sim.comm, gid, "halfsize", n, D, derived.data()));
   } else
     PetscCall(WriteRowsCollective(sim.comm, gid, "halfsize", n, D, P.lp));

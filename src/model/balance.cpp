@@ -189,6 +189,77 @@ PetscErrorCode BalanceSetup(Simulation &sim, ParticleList &init) {
   PetscFunctionReturn(0);
 }
 
+namespace {
+// -dim 3: max / mean particles per rank of the extruded plane on the partition with cell bounds
+// bx, by, bz: the plane's particles in each column-row block times the block's z cells x ppc.
+double ExtrudedImbalance(const Simulation &sim, const ParticleList &plane,
+                         const std::vector<PetscInt> &bx, const std::vector<PetscInt> &by,
+                         const std::vector<PetscInt> &bz) {
+  const size_t px = bx.size() - 1, py = by.size() - 1, pz = bz.size() - 1;
+  std::vector<double> blk2(px * py, 0.0), blk(px * py * pz);
+  for (const ParticleInit &q : plane) {
+    const size_t i = std::upper_bound(bx.begin(), bx.end(), CellOf(sim, q.x, 0)) - bx.begin() - 1;
+    const size_t j = std::upper_bound(by.begin(), by.end(), CellOf(sim, q.x, 1)) - by.begin() - 1;
+    blk2[j * px + i] += 1;
+  }
+  for (size_t k = 0; k < pz; ++k)
+    for (size_t ij = 0; ij < px * py; ++ij)
+      blk[k * px * py + ij] = blk2[ij] * (double)((bz[k + 1] - bz[k]) * sim.set.ppc);
+  return Imbalance(blk);
+}
+} // namespace
+
+PetscErrorCode BalanceSetupExtruded(Simulation &sim, const ParticleList &plane) {
+  Balance &b = sim.balance;
+  PetscInt p[3];
+  const PetscInt *l[3];
+  PetscFunctionBeginUser;
+  if (!ev_balance) {
+    PetscClassId cls;
+    PetscCall(PetscClassIdRegister("pmpm balance", &cls));
+    PetscCall(PetscLogEventRegister("Balance", cls, &ev_balance));
+  }
+  PetscCall(PetscLogEventBegin(ev_balance, 0, 0, 0, 0));
+  const double t0 = MPI_Wtime();
+  GridT<3> &g = sim.grid3;
+  PetscCall(DMDAGetInfo(g.da, nullptr, nullptr, nullptr, nullptr, &p[0], &p[1], &p[2], nullptr,
+                        nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(g.da, &l[0], &l[1], &l[2]));
+  std::vector<PetscInt> b0[3];
+  for (int d = 0; d < 3; ++d) b0[d] = CellBounds(l[d], p[d], g.ncell[d]);
+  b.before = b.after = ExtrudedImbalance(sim, plane, b0[0], b0[1], b0[2]);
+  if (b.mode != BalanceMode::None && sim.size > 1) {
+    // the plane's particles per cell column, then per cell row (every rank has the whole plane)
+    const PetscInt nx = g.ncell[0], ny = g.ncell[1];
+    std::vector<double> cnt(nx + ny, 0.0);
+    for (const ParticleInit &q : plane) {
+      cnt[CellOf(sim, q.x, 0)] += 1;
+      cnt[nx + CellOf(sim, q.x, 1)] += 1;
+    }
+    const std::vector<PetscInt> bx = SplitCounts(cnt.data(), nx, p[0]),
+                                by = SplitCounts(cnt.data() + nx, ny, p[1]);
+    const double predicted =
+        bx.empty() || by.empty() ? 1e300 : ExtrudedImbalance(sim, plane, bx, by, b0[2]);
+    if (predicted < b.before * (1 - b.gain)) {
+      const std::vector<PetscInt> lx = NodeCounts(bx), ly = NodeCounts(by), lz(l[2], l[2] + p[2]);
+      const double h = g.h, origin[3] = {g.origin[0], g.origin[1], g.origin[2]};
+      const PetscInt ncell[3] = {g.ncell[0], g.ncell[1], g.ncell[2]}, pz = p[2];
+      const PetscInt px = p[0], py = p[1];
+      PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
+      PetscCall(GridDestroy(g));
+      PetscCall(GridCreate<3>(sim.comm, h, origin, ncell, 1, 0, g, px, py, lx.data(), ly.data(), pz,
+                              lz.data()));
+      PetscCall(ParticlesCreate(g, sim.parts));
+      b.after = predicted;
+      b.rebuilt = true;
+    }
+  }
+  double dt = MPI_Wtime() - t0;
+  PetscCallMPI(MPI_Allreduce(&dt, &b.seconds, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
+  PetscCall(PetscLogEventEnd(ev_balance, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode BalanceRebuildGrid(Simulation &sim, PetscInt px, PetscInt py,
                                   const std::vector<PetscInt> &lx,
                                   const std::vector<PetscInt> &ly) {

@@ -102,10 +102,14 @@ Assessment assess(const std::vector<double> &h, const std::vector<DesignRecord> 
     }
   if (!a.not_converged.empty()) {
     a.verdict = Verdict::NotConverged;
+    const bool newton = a.not_converged.back().newton; // one solver over the meshes
     a.reason = capped_text(a.not_converged) +
-               " stopped at the step cap (-solver newton: at its last load-step halving) before "
-               "reaching -tol: not an equilibrium, no design answer (raise -max_steps or the "
-               "stage's step cap, or docs/method.md, section 3)";
+               (newton ? " stopped at the last load-step halving (-newton_max_cuts) before "
+                         "converging: not an equilibrium, no design answer (a collapse, or raise "
+                         "-newton_max_cuts; docs/newton.md)"
+                       : " stopped at the step cap before reaching -tol: not an equilibrium, no "
+                         "design answer (raise -max_steps or the stage's step cap, or "
+                         "docs/method.md, section 3)");
     return a;
   }
   const DesignAnswer *c = checked_answer(fine);

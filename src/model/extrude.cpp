@@ -1,5 +1,6 @@
 // -dim 3: a 2D scene extruded along z (extrude.hpp).
 #include "pmpm/model/extrude.hpp"
+#include "pmpm/model/balance.hpp"
 #include "pmpm/util/options.hpp"
 #include <cmath>
 
@@ -25,7 +26,6 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
       {s.solver != "relaxation", "-solver newton (use -solver relaxation)"},
       {s.geometry != Geometry::PlaneStrain, "-geometry axisymmetric"},
       {s.fbar, "-fbar"},
-      {s.shape == ShapeKind::CPGIMP, "-shape cpgimp (use -shape pmpm or mpm)"},
       {sim.balance.mode == BalanceMode::Run,
        "-balance run (the 3D partition is PETSc's or -da_processors_x/y/z)"},
       {!sim.model.chain_specs.empty(), "membrane chains"},
@@ -33,8 +33,6 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
   };
   for (const auto &r : refusals)
     PmpmCheckInput(!r.refused, sim.comm, PETSC_ERR_SUP, "-dim 3 does not run %s yet", r.what);
-  // -balance setup (the default) does not balance a 3D grid yet: the summary says none
-  sim.balance.mode = BalanceMode::None;
   PetscFunctionReturn(0); // -depth in whole cells: ExtrudedGridAndParticles, which comes next
 }
 
@@ -126,6 +124,7 @@ PetscErrorCode ExtrudedGridAndParticles(Simulation &sim, const MemoryCheck &mem)
   {
     ParticleList plane;
     PetscCall(GeneratePlane(sim, plane));
+    PetscCall(BalanceSetupExtruded(sim, plane)); // -balance setup: lx, ly from the plane
     // ids: 2D id x (z cells x ppc) + z index, within PetscInt's range
     double top = 0;
     for (const ParticleInit &q : plane) top = std::fmax(top, static_cast<double>(q.pid));

@@ -156,15 +156,15 @@ PetscErrorCode FastestParticle(Simulation &sim, double info[4]) {
 
 // The largest unbalanced force over the ranks and the node it sits at (collective: one MAXLOC
 // reduction and a broadcast of the node from the rank that holds it).
-PetscErrorCode LargestUnbalanced(const Simulation &sim, double *value, double at[DIM]) {
+PetscErrorCode LargestUnbalanced(const Simulation &sim, double *value, double at[3]) {
   struct {
     double v;
     int rank;
   } loc = {sim.run.local_unbalanced, sim.rank}, glob;
   PetscFunctionBeginUser;
-  for (int d = 0; d < DIM; ++d) at[d] = sim.run.local_unbalanced_at[d];
+  for (int d = 0; d < 3; ++d) at[d] = sim.run.local_unbalanced_at[d]; // z: 0 in 2D
   PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
-  PetscCallMPI(MPI_Bcast(at, DIM, MPI_DOUBLE, glob.rank, sim.comm));
+  PetscCallMPI(MPI_Bcast(at, 3, MPI_DOUBLE, glob.rank, sim.comm));
   *value = glob.v;
   PetscFunctionReturn(0);
 }
@@ -172,7 +172,7 @@ PetscErrorCode LargestUnbalanced(const Simulation &sim, double *value, double at
 // One -relax_history row: the node of the largest unbalanced force over the ranks (collective).
 PetscErrorCode HistoryRow(Simulation &sim, const RelaxationState &st, FILE *f, PetscInt k) {
   const RunState &run = sim.run;
-  double largest, at[DIM];
+  double largest, at[3];
   PetscFunctionBeginUser;
   PetscCall(LargestUnbalanced(sim, &largest, at));
   if (f)
@@ -197,9 +197,15 @@ void FormatSeconds(double s, char *buf, size_t n) {
 PetscErrorCode NotConverged(Simulation &sim, const char *tag, double ratio_half) {
   const Settings &s = sim.set;
   const RunState &run = sim.run;
-  double largest, at[DIM];
+  double largest, at[3];
   PetscFunctionBeginUser;
   PetscCall(LargestUnbalanced(sim, &largest, at));
+  char node[96]; // 2D: forces per unit thickness at (x, y); 3D: forces at (x, y, z)
+  if (s.dim == 3)
+    snprintf(node, sizeof(node), "(%.3g N) is at the node (%g, %g, %g) m", largest, at[0], at[1],
+             at[2]);
+  else
+    snprintf(node, sizeof(node), "(%.3g N/m) is at the node (%g, %g) m", largest, at[0], at[1]);
   // the trend over the second half: a ratio that hardly falls may be a mechanism (a creep at
   // constant rate, which more steps do not cure; docs/method.md, section 3)
   char trend[384] = "";
@@ -216,10 +222,8 @@ PetscErrorCode NotConverged(Simulation &sim, const char *tag, double ratio_half)
   PetscCall(PetscPrintf(sim.comm,
                         "%sNOT converged: step cap %" PetscInt_FMT " reached with "
                         "unbalanced-force ratio %.3e > %g (%.2f s); the largest unbalanced "
-                        "force (%.3g N/m) is at the node (%g, %g) m. Raise -max_steps or "
-                        "-tol%s.%s\n",
-                        tag, s.max_steps, run.ratio, s.tol, run.stage_seconds, largest, at[0],
-                        at[1],
+                        "force %s. Raise -max_steps or -tol%s.%s\n",
+                        tag, s.max_steps, run.ratio, s.tol, run.stage_seconds, node,
                         sim.chains.empty() ? ""
                                            : "; at a membrane's node, the contact may be "
                                              "chattering (docs/limitations.md)",

@@ -11,7 +11,29 @@ bool Active(const Simulation &sim, const Load &) {
   return sim.set.shape == ShapeKind::CPGIMP;
 }
 
-PetscErrorCode CheckSupport(StepState &S) {
+// This rank's first outgrown block in dimension D: [ratio, pid, x, y, z, direction, stretch
+// V_dd, l0] (ratio 0: none).
+template <int D> void FirstOutgrown(const ParticleView &P, double lmax, double info[8]) {
+  for (PetscInt p = 0; p < P.n; ++p) {
+    double lb[D];
+    const double *l = CPGIMPShape::half<D>(P.lp + p * D, P.F + p * D * D, lb);
+    for (int d = 0; d < D; ++d)
+      if (l[d] > lmax) {
+        const double r[8] = {l[d] / lmax,
+                             (double)P.pid[p],
+                             P.x[p * D],
+                             P.x[p * D + 1],
+                             D == 3 ? P.x[p * D + D - 1] : 0.0,
+                             (double)d,
+                             l[d] / P.lp[p * D + d],
+                             P.lp[p * D + d]};
+        for (int k = 0; k < 8; ++k) info[k] = r[k];
+        return;
+      }
+  }
+}
+
+PetscErrorCode CheckSupport(StepState &S) { // runs in 2D and under -dim 3 (its after_step only)
   Simulation &sim = S.sim;
   ParticleView P;
   PetscFunctionBeginUser;
@@ -19,20 +41,11 @@ PetscErrorCode CheckSupport(StepState &S) {
       step_events.support); // to the end: the error's broadcast too, only when it fails
   PetscCall(ParticlesGetView(sim.parts, P));
   const double lmax = CPGIMPShape::kMaxHalf * sim.grid.h;
-  // [ratio, pid, x, y, direction, stretch V_dd, l0] of this rank's first outgrown block
-  double info[7] = {0, 0, 0, 0, 0, 0, 0};
-  for (PetscInt p = 0; p < P.n && info[0] == 0; ++p) {
-    double lb[DIM];
-    const double *l = CPGIMPShape::half(P.lp + p * DIM, P.F + p * DIM * DIM, lb);
-    for (int d = 0; d < DIM; ++d)
-      if (l[d] > lmax) {
-        const double r[7] = {l[d] / lmax,      (double)P.pid[p], P.x[p * DIM],
-                             P.x[p * DIM + 1], (double)d,        l[d] / P.lp[p * DIM + d],
-                             P.lp[p * DIM + d]};
-        for (int k = 0; k < 7; ++k) info[k] = r[k];
-        break;
-      }
-  }
+  double info[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  if (sim.set.dim == 3)
+    FirstOutgrown<3>(P, lmax, info);
+  else
+    FirstOutgrown<DIM>(P, lmax, info);
   PetscCall(ParticlesRestoreView(sim.parts, P));
   struct {
     double v;
@@ -40,15 +53,21 @@ PetscErrorCode CheckSupport(StepState &S) {
   } in = {info[0], sim.rank}, out;
   PetscCallMPI(MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
   if (out.v == 0) PetscFunctionReturn(0);
-  PetscCallMPI(MPI_Bcast(info, 7, MPI_DOUBLE, out.rank, sim.comm));
+  PetscCallMPI(MPI_Bcast(info, 8, MPI_DOUBLE, out.rank, sim.comm));
+  const char *axis = "xyz" + (int)info[5];
+  char at[96];
+  if (sim.set.dim == 3)
+    PetscCall(PetscSNPrintf(at, sizeof at, "(%g, %g, %g)", info[2], info[3], info[4]));
+  else
+    PetscCall(PetscSNPrintf(at, sizeof at, "(%g, %g)", info[2], info[3]));
   SETERRQ(sim.comm, PETSC_ERR_NOT_CONVERGED,
-          "cpGIMP support outgrown at step %" PetscInt_FMT ": particle %.0f at x = (%g, %g) m is "
-          "stretched by V_%s%s = %g, so its half-size %g m (initially %g m) exceeds one cell h = "
+          "cpGIMP support outgrown at step %" PetscInt_FMT ": particle %.0f at x = %s m is "
+          "stretched by V_%c%c = %g, so its half-size %g m (initially %g m) exceeds one cell h = "
           "%g m, the "
           "largest block the 4-node support holds (stretch 2 at -ppc 1, 4 at -ppc 2). Raise -ppc "
           "(smaller initial blocks), or use -shape pmpm.",
-          sim.run.step, info[1], info[2], info[3], info[4] == 0 ? "x" : "y",
-          info[4] == 0 ? "x" : "y", info[5], info[0] * lmax, info[6], sim.grid.h);
+          sim.run.step, info[1], at, axis[0], axis[0], info[6], info[0] * lmax, info[7],
+          sim.grid.h);
 }
 } // namespace
 

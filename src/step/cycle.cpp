@@ -22,8 +22,9 @@ template <int D> GridT<D> &StepGrid(Simulation &sim) {
   else
     return sim.grid;
 }
-// The hooks run in 2D; -dim 3 refuses every scene or option that would activate one
-// (ExtrusionCheck), so in 3D there is nothing to call.
+// The phases' hooks run in 2D; -dim 3 refuses every scene or option that would activate one
+// with a member in phases 0-6 (ExtrusionCheck), so in 3D there is nothing to call here (a hook
+// with only after-step members, cpGIMP's support check, runs in Step in both dimensions).
 template <int D>
 PetscErrorCode Hooks(const ActiveHooks &h, PetscErrorCode (*StepHook::*member)(StepState &),
                      StepStateT<D> &S) {
@@ -31,9 +32,10 @@ PetscErrorCode Hooks(const ActiveHooks &h, PetscErrorCode (*StepHook::*member)(S
   if constexpr (D == DIM)
     PetscCall(RunHooks(h, member, S));
   else
-    PetscCheck(h.n == 0, S.sim.comm, PETSC_ERR_SUP,
-               "-dim 3 does not run %s yet (step %" PetscInt_FMT ")", h.hook[0]->name,
-               S.sim.run.step);
+    for (int i = 0; i < h.n; ++i)
+      PetscCheck(!(h.hook[i]->*member), S.sim.comm, PETSC_ERR_SUP,
+                 "-dim 3 does not run %s yet (step %" PetscInt_FMT ")", h.hook[i]->name,
+                 S.sim.run.step);
   PetscFunctionReturn(0);
 }
 

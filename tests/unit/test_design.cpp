@@ -126,6 +126,13 @@ int main() {
     const Assessment b = assess({0.1}, {DesignRecord{}}, {{0.1, {0}}}, 1.0);
     CHECK(b.verdict == Verdict::NotConverged);
     CHECK(design_log(b).rfind("verdict: NOT CONVERGED (stage 0 at h = 0.1 m", 0) == 0);
+    // the reason names how the stage ended: relaxation's step cap or Newton's last halving
+    CHECK(b.reason.find("at the step cap before reaching -tol") != std::string::npos);
+    CHECK(b.reason.find("halving") == std::string::npos);
+    const Assessment n = assess({0.1}, {DesignRecord{}}, {{0.1, {1}, true}}, 1.0);
+    CHECK(n.verdict == Verdict::NotConverged);
+    CHECK(n.reason.find("stage 1 at h = 0.1 m stopped at the last load-step halving") == 0);
+    CHECK(n.reason.find("-tol") == std::string::npos);
   }
   return pmpm_test::report("design");
 }

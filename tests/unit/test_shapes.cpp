@@ -442,6 +442,61 @@ void test_cpgimp_half_size() {
 
 } // namespace
 
+// The 3D half-size (polar_stretch_diagonal: V = F R^T, Newton's polar iteration): on an extruded
+// gradient it equals the 2D closed form with V_zz = 1; on random 3D gradients it equals V from an
+// independent method (Eigen's iterative, QL-based eigen decomposition of F F^T, accurate to a
+// few eps: 1e-13 for entries up to 3); rotations keep the block, a stretch then a quarter turn
+// about z swaps x and y, and a singular F (no rotation to find) takes the eigen decomposition.
+void test_cpgimp_half_size_3d(Lcg &r) {
+  const double lp[3] = {0.25 * H, 0.125 * H, 0.2 * H};
+  double lb2[2], lb3[3];
+  for (int n = 0; n < NSAMPLE; ++n) {
+    double F2[4];
+    for (int k = 0; k < 4; ++k) F2[k] = (k == 0 || k == 3 ? 1.0 : 0.0) + r.uniform(-0.5, 0.5);
+    if (F2[0] * F2[3] - F2[1] * F2[2] < 0.1) continue;
+    const double F3[9] = {F2[0], F2[1], 0.0, F2[2], F2[3], 0.0, 0.0, 0.0, 1.0};
+    const double *l2 = CPGIMPShape::half<2>(lp, F2, lb2);
+    const double *l3 = CPGIMPShape::half<3>(lp, F3, lb3);
+    CHECK_CLOSE(l3[0], l2[0], 1e-15 * H);
+    CHECK_CLOSE(l3[1], l2[1], 1e-15 * H);
+    CHECK_CLOSE(l3[2], lp[2], 1e-15 * H);
+  }
+  for (int n = 0; n < NSAMPLE; ++n) {
+    double F[9];
+    for (int k = 0; k < 9; ++k) F[k] = (k % 4 == 0 ? 1.0 : 0.0) + r.uniform(-0.6, 0.6);
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> Fm(F);
+    if (std::fabs(Fm.determinant()) < 0.05) continue;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(Fm * Fm.transpose());
+    const Eigen::Matrix3d V = es.eigenvectors() * es.eigenvalues().cwiseSqrt().asDiagonal() *
+                              es.eigenvectors().transpose();
+    const double *l = CPGIMPShape::half<3>(lp, F, lb3);
+    for (int d = 0; d < 3; ++d) CHECK_CLOSE(l[d], V(d, d) * lp[d], 1e-13 * lp[d]);
+  }
+  // a rotation by 0.9 about the axis (1, 2, 2) / 3: V = I
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, 2, 2).normalized()).toRotationMatrix();
+  double FR[9];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) FR[3 * i + j] = R(i, j);
+  const double *l = CPGIMPShape::half<3>(lp, FR, lb3);
+  for (int d = 0; d < 3; ++d) CHECK_CLOSE(l[d], lp[d], 1e-15 * H);
+  // diag(1.5, 0.7, 1.2), then a quarter turn about z: x <- -y, y <- x, so V = diag(0.7, 1.5, 1.2)
+  const double Q[9] = {0.0, -0.7, 0.0, 1.5, 0.0, 0.0, 0.0, 0.0, 1.2};
+  l = CPGIMPShape::half<3>(lp, Q, lb3);
+  CHECK_CLOSE(l[0], 0.7 * lp[0], 1e-15 * H);
+  CHECK_CLOSE(l[1], 1.5 * lp[1], 1e-15 * H);
+  CHECK_CLOSE(l[2], 1.2 * lp[2], 1e-15 * H);
+  // singular: flattened along z (the eigen decomposition's path), and collapsed (floored)
+  const double S[9] = {1.5, 0.0, 0.0, 0.0, 0.8, 0.0, 0.0, 0.0, 0.0};
+  l = CPGIMPShape::half<3>(lp, S, lb3);
+  CHECK_CLOSE(l[0], 1.5 * lp[0], 1e-14 * H);
+  CHECK_CLOSE(l[1], 0.8 * lp[1], 1e-14 * H);
+  CHECK(l[2] == CPGIMPShape::kMinStretch * lp[2]);
+  const double Z[9] = {};
+  l = CPGIMPShape::half<3>(lp, Z, lb3);
+  for (int d = 0; d < 3; ++d) CHECK(l[d] == CPGIMPShape::kMinStretch * lp[d]);
+}
+
 int main() {
   Lcg r;
   test_basic_properties<LinearShape>(r);
@@ -459,5 +514,6 @@ int main() {
   test_pmpm_gradient_is_derivative<CPGIMPShape>(c, CPGIMPShape::kMaxHalf);
   test_cpgimp_equals_ugimp(c);
   test_cpgimp_half_size();
+  test_cpgimp_half_size_3d(r);
   return pmpm_test::report("test_shapes");
 }

@@ -12,14 +12,16 @@
 // inverts a particle at step 389, a quarter turn; with V_dd (= I under any rotation) it keeps
 // uGIMP's blocks and runs its 3.2 turns. In simple shear, F = [[1, g], [0, 1]], V_dd = 1 + O(g^2)
 // where F_dd = 1: the blocks overlap by O(g^2). V has a closed form in 2D:
-// V = (B + J I) / sqrt(tr B + 2 J), B = F F^T, J = |det F|; in 3D it comes from B's eigen
-// decomposition (half<3>).
+// V = (B + J I) / sqrt(tr B + 2 J), B = F F^T, J = |det F|; in 3D it is F R^T, R the polar
+// decomposition's rotation (polar_stretch_diagonal).
 //
 // Support: a block of half-size l <= h (in cell units li <= 1) starting in cell base spans at most
 // three cells, NS = 4 nodes, inside the grid's two ghost layers (grid.cpp). A larger block is
 // reported with the particle and what to change (cycle.cpp, CheckSupport); kMaxHalf is that bound.
 #pragma once
 #include "pmpm/core/shape.hpp"
+#include <Eigen/Dense>
+#include <algorithm>
 
 namespace pmpm {
 
@@ -29,8 +31,52 @@ struct CPGIMPShape {
   static constexpr double kMaxHalf = 1.0;     // largest half-size, in cells, the support holds
   static constexpr double kMinStretch = 1e-3; // floor on V_dd (a collapsed F only)
 
+  // V's diagonal in 3D: V = F R^T with R the rotation of the polar decomposition F = R U, found
+  // by Newton's iteration X <- (X + X^-T) / 2 from X = F (quadratic; a stretch of 4 takes 7
+  // iterations). It keeps round-off at machine precision where the eigenvalues of F F^T nearly
+  // coincide (F near a rotation, the common case), which the closed-form cubic of Eigen's
+  // computeDirect does not: it was 1e-12 off the 2D closed form on extruded gradients. A singular
+  // F (det = 0: no rotation to find) takes the eigen decomposition of B = F F^T.
+  static void polar_stretch_diagonal(const double *F, double V[3]) {
+    double X[9];
+    for (int i = 0; i < 9; ++i) X[i] = F[i];
+    bool singular = false;
+    for (int it = 0; it < 40; ++it) {
+      // X^-T = cof(X) / det X
+      const double c[9] = {
+          X[4] * X[8] - X[5] * X[7], X[5] * X[6] - X[3] * X[8], X[3] * X[7] - X[4] * X[6],
+          X[2] * X[7] - X[1] * X[8], X[0] * X[8] - X[2] * X[6], X[1] * X[6] - X[0] * X[7],
+          X[1] * X[5] - X[2] * X[4], X[2] * X[3] - X[0] * X[5], X[0] * X[4] - X[1] * X[3]};
+      const double det = X[0] * c[0] + X[1] * c[1] + X[2] * c[2];
+      if (!(std::fabs(det) > 1e-300) || !std::isfinite(det)) {
+        singular = true;
+        break;
+      }
+      const double inv = 0.5 / det;
+      double delta = 0.0;
+      for (int i = 0; i < 9; ++i) {
+        const double xn = 0.5 * X[i] + inv * c[i];
+        delta = std::max(delta, std::fabs(xn - X[i]));
+        X[i] = xn;
+      }
+      if (delta < 1e-10) break; // X's error is now about delta^2: machine precision
+    }
+    if (!singular) {
+      for (int d = 0; d < 3; ++d)
+        V[d] = F[3 * d] * X[3 * d] + F[3 * d + 1] * X[3 * d + 1] + F[3 * d + 2] * X[3 * d + 2];
+      return;
+    }
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> Fm(F);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(Fm * Fm.transpose());
+    const Eigen::Vector3d sl = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+    for (int d = 0; d < 3; ++d) {
+      V[d] = 0.0;
+      for (int i = 0; i < 3; ++i) V[d] += sl[i] * es.eigenvectors()(d, i) * es.eigenvectors()(d, i);
+    }
+  }
+
   // The current half-size: buf_d = lp_d max(V_dd, kMinStretch); F row-major D x D. 2D: the
-  // closed form above. 3D: V = Q diag(sqrt(lambda)) Q^T from the eigen decomposition of B = F F^T.
+  // closed form above. 3D: polar_stretch_diagonal.
   template <int D = DIM> static const double *half(const double *lp, const double *F, double *buf) {
     static_assert(D == 2 || D == 3, "2D or 3D");
     double V[D];
@@ -41,15 +87,7 @@ struct CPGIMPShape {
       V[0] = (B00 + J) * inv;
       V[1] = (B11 + J) * inv;
     } else {
-      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> Fm(F);
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-      es.computeDirect(Fm * Fm.transpose());
-      const Eigen::Vector3d sl = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-      for (int d = 0; d < 3; ++d) {
-        V[d] = 0.0;
-        for (int i = 0; i < 3; ++i)
-          V[d] += sl[i] * es.eigenvectors()(d, i) * es.eigenvectors()(d, i);
-      }
+      polar_stretch_diagonal(F, V);
     }
     for (int d = 0; d < D; ++d) buf[d] = lp[d] * (V[d] > kMinStretch ? V[d] : kMinStretch);
     return buf;

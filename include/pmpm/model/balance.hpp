@@ -53,6 +53,14 @@ PetscErrorCode BalanceFromOptions(MPI_Comm comm, Balance &b);
 // imbalance and, if the particle-balanced partition pays, recreates the grid (and the interface
 // grid and the swarm on it) and generates init again.
 PetscErrorCode BalanceSetup(Simulation &sim, ParticleList &init);
+// -dim 3 (extrude.cpp), after the 3D grid is created on PETSc's partition and before any 3D
+// particle exists: every rank holds the whole plane and each plane particle becomes the same
+// number of particles along z, so the particles per cell column and row are the plane's. They are
+// cut into px columns and py rows as in 2D; the z slabs keep PETSc's even split (the particles
+// are uniform along z). If that lowers the imbalance by more than -balance_gain, the 3D grid (and
+// the empty swarm on it) is recreated with those lx, ly. The imbalances before and after are
+// exact (counted from the plane), and nothing is generated twice.
+PetscErrorCode BalanceSetupExtruded(Simulation &sim, const ParticleList &plane);
 // -balance run, at a stage's end (rank-collective): if the imbalance exceeds -balance_threshold
 // and the particle-balanced partition lowers it by more than -balance_gain, the grid is rebuilt
 // with that partition and the particles move to the ranks owning their cells (particle_records).

@@ -59,6 +59,7 @@ Verdict judge(double value, double error, double allowable);
 struct CappedStages {
   double h = 0;
   std::vector<int> stages;
+  bool newton = false; // -solver newton: a stage ends unconverged at its last load-step halving
 };
 // "stages 2, 3 at h = 0.5 m; stage 1 at h = 0.25 m"
 std::string capped_text(const std::vector<CappedStages> &capped);

@@ -6,14 +6,16 @@
 // particles; each becomes ppc particles per z cell over the depth (half-size h / (2 ppc) along
 // z, volume times the z spacing, id = 2D id x (z cells x ppc) + z index: rank-independent). The
 // 3D grid has the plane's cells and depth / h cells along z, the z faces -bc_zmin and -bc_zmax
-// (rollers by default), and its partition is PETSc's or -da_processors_x/y/z. Each rank
+// (rollers by default), and its partition is PETSc's or -da_processors_x/y/z, with -balance setup
+// moving the x and y cuts to the plane's particle counts (BalanceSetupExtruded). Each rank
 // generates the whole plane (no grid: the plane's particles are O(N^(2/3)) of the run's N) and
 // keeps the particles of its 3D cells, so nothing is redistributed.
 //
 // What the 3D step does not run yet is refused before the run, by name (ExtrusionCheck): the
-// step's hooks (chains, the colour interface, F-bar, an imposed eigenstrain, cpGIMP's support
-// check), -solver newton, -geometry axisymmetric, -shape cpgimp, supports inside the box,
-// -balance run, and scenes whose results read the plane only
+// step's hooks that act inside the step's phases (chains, the colour interface, F-bar, an imposed
+// eigenstrain; cpGIMP's support check runs after the step and reads the dimension), -solver
+// newton, -geometry axisymmetric, supports inside the box, -balance run, and scenes whose
+// results read the plane only
 // (Scene::extrudes). Face tractions extrude: the plane's load table (per unit depth) becomes
 // sim.model.loads3, each entry times the particles' z spacing, shared by a particle's z copies.
 #pragma once
