@@ -105,7 +105,7 @@ void Extrude(const Simulation &sim, const ParticleList &plane, ParticleListT<3> 
       p.pid = q.pid * nz + k;
       p.body = q.body;
       p.load = q.load; // its plane particle's entry of sim.model.loads3
-      out.push_back(p);
+      if (sim.scene->keeps_extruded(p.x)) out.push_back(p);
     }
   }
 }

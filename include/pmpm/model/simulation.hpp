@@ -123,6 +123,9 @@ public:
   }
   // -dim 3 (extrude.hpp): the scene runs extruded along z (its results read any dimension).
   virtual bool extrudes() const { return false; }
+  // -dim 3: whether an extruded particle centred at x (3 coordinates) is kept; a scene whose 3D
+  // body is not a prism (the round column) drops the others. Default: every particle.
+  virtual bool keeps_extruded(const double[3]) const { return true; }
   // True when the later stages have no meaning any more (a footing that collapsed).
   virtual bool finished() const { return false; }
   // Checkpoint and restart (checkpoint.hpp): the scene's own state that changes during a run
