@@ -176,8 +176,8 @@ cases = [
      "-column_round needs -dim 3"),
     ("round column deeper than the box", ["-options_file", "options/column.opts", "-dim", "3",
                                           "-depth", "0.0625", "-column_round"], "-column_round"),
-    ("3D vibrating bar", ["-options_file", "options/bar_vibration.opts", "-dim", "3", "-depth",
-                          "0.1"], "-scene bar"),
+    ("3D block (does not extrude)", ["-options_file", "options/block.opts", "-dim", "3",
+                                     "-depth", "0.5"], "-scene block"),
     ("3D z face misspelled", ["-options_file", "options/column.opts", "-dim", "3", "-depth",
                               "0.125", "-bc_zmin", "clamped"], "-bc_zmin"),
     # -geometry axisymmetric: what it does not support is refused, naming the option
