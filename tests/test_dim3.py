@@ -11,7 +11,8 @@ usage: test_dim3.py EXE OUTDIR
    height and of the largest stress; its z stays put and its out-of-plane shears yz, xz stay zero
    to the same bounds. The 3D runs agree among themselves by the same token (rank invariance).
    The same on one rank for neo-Hookean at 26 % compression, von Mises and Drucker-Prager
-   (both yielding at the base: the 3D return maps on a plane-strain path), and cpGIMP on 2 ranks
+   (both yielding at the base: the 3D return maps on a plane-strain path; the two plastic laws
+   also on 4 ranks as 2x1x2 against the 1-rank 3D run, positions and eps_p), and cpGIMP on 2 ranks
    (its blocks' half-sizes from the 3D polar decomposition against 2D's closed form).
 2. Converged (the column's own tolerance): the 3D settlement equals the 2D one to 1e-10 of the
    height and the closed-form errors equal the 2D run's. The two runs stop a few steps apart
@@ -161,6 +162,17 @@ for name, opts in MATERIALS.items():
     if name in ("von_mises", "drucker_prager"):
         ep = particles(out + "/3d_" + name, ("eps_p",))[1]["eps_p"]
         c.ge(f"{name} 3D: the base yielded (max eps_p)", float(np.max(ep)), 1e-6)
+        # the plastic state across ranks: 4 ranks as 2x1x2 against the 1-rank 3D run
+        run(exe, 4, BASE + opts + FIXED + D3 + ["-da_processors_x", "2", "-da_processors_y", "1",
+                                                "-da_processors_z", "2"],
+            out + "/3d_" + name + "_np4", capped=True)
+        ids4, f4 = particles(out + "/3d_" + name + "_np4", ("position", "eps_p"))
+        ids1, f1 = particles(out + "/3d_" + name, ("position", "eps_p"))
+        c.check(f"{name} 3D np4 (2x1x2): the same particles", np.array_equal(ids4, ids1))
+        c.le(f"{name} 3D np4 (2x1x2): positions equal 1 rank's (/H)",
+             np.abs(f4["position"] - f1["position"]).max() / H, 1e-10)
+        c.le(f"{name} 3D np4 (2x1x2): eps_p equal 1 rank's (/max eps_p)",
+             np.abs(f4["eps_p"] - f1["eps_p"]).max() / np.max(ep), 1e-10)
 
 # the method's variants on one rank: MUSL, standard MPM (-shape mpm), APIC (its B_p in 3x3),
 # local damping, FIRE (30 steps: its restarts are discrete events that turn round-off into 1e-8

@@ -117,6 +117,18 @@ PetscErrorCode Plan(const Simulation &sim, PetscInt px, PetscInt py, const Items
   PetscFunctionReturn(0);
 }
 
+// The Balance event of -log_view (registered on first use), begun.
+PetscErrorCode BalanceEventBegin() {
+  PetscFunctionBeginUser;
+  if (!ev_balance) {
+    PetscClassId cls;
+    PetscCall(PetscClassIdRegister("pmpm balance", &cls));
+    PetscCall(PetscLogEventRegister("Balance", cls, &ev_balance));
+  }
+  PetscCall(PetscLogEventBegin(ev_balance, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode RankImbalance(MPI_Comm comm, PetscInt n, double *imb) {
   PetscMPIInt size;
   PetscFunctionBeginUser;
@@ -159,12 +171,7 @@ PetscErrorCode BalanceSetup(Simulation &sim, ParticleList &init) {
   Balance &b = sim.balance;
   PetscInt px, py;
   PetscFunctionBeginUser;
-  if (!ev_balance) {
-    PetscClassId cls;
-    PetscCall(PetscClassIdRegister("pmpm balance", &cls));
-    PetscCall(PetscLogEventRegister("Balance", cls, &ev_balance));
-  }
-  PetscCall(PetscLogEventBegin(ev_balance, 0, 0, 0, 0));
+  PetscCall(BalanceEventBegin());
   const double t0 = MPI_Wtime();
   PetscCall(RankImbalance(sim.comm, (PetscInt)init.size(), &b.before));
   b.after = b.before;
@@ -214,12 +221,7 @@ PetscErrorCode BalanceSetupExtruded(Simulation &sim, const ParticleList &plane) 
   PetscInt p[3];
   const PetscInt *l[3];
   PetscFunctionBeginUser;
-  if (!ev_balance) {
-    PetscClassId cls;
-    PetscCall(PetscClassIdRegister("pmpm balance", &cls));
-    PetscCall(PetscLogEventRegister("Balance", cls, &ev_balance));
-  }
-  PetscCall(PetscLogEventBegin(ev_balance, 0, 0, 0, 0));
+  PetscCall(BalanceEventBegin());
   const double t0 = MPI_Wtime();
   GridT<3> &g = sim.grid3;
   PetscCall(DMDAGetInfo(g.da, nullptr, nullptr, nullptr, nullptr, &p[0], &p[1], &p[2], nullptr,

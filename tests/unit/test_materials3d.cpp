@@ -109,6 +109,39 @@ void test_linear_elastic() {
   CHECK_CLOSE(st[5], 0.0, 0.0);
 }
 
+// The written-out 3D rate update (elastic_rate_update3) against the tensor formula evaluated
+// independently on 3x3 matrices, s + W s - s W + lambda tr(e) I + 2 G e (W = (g - g^T) / 2,
+// e = sym(g)), on random increments with every spin component and random stresses: equal to
+// round-off (1e-13 of the largest stress; sums of a few O(1) products).
+void test_linear_elastic_random() {
+  const ElasticConstants el = elastic();
+  const LinearElastic m(el);
+  pmpm_test::Lcg r(7);
+  const double F9[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  for (int n = 0; n < 500; ++n) {
+    double g[9], st[6];
+    for (double &v : g) v = r.uniform(-1e-3, 1e-3);
+    for (double &v : st) v = r.uniform(-5e4, 5e4);
+    Mat3 G, S;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) G(i, j) = g[3 * i + j];
+    S << st[0], st[3], st[5], st[3], st[1], st[4], st[5], st[4], st[2];
+    const Mat3 W = 0.5 * (G - G.transpose()), E = 0.5 * (G + G.transpose());
+    const Mat3 ref =
+        S + W * S - S * W + el.lambda() * E.trace() * Mat3::Identity() + 2.0 * el.G() * E;
+    double ep = 0;
+    update_one<3>(m, g, F9, st, ep);
+    const double tol = 1e-13 * 5e4;
+    CHECK_CLOSE(st[0], ref(0, 0), tol);
+    CHECK_CLOSE(st[1], ref(1, 1), tol);
+    CHECK_CLOSE(st[2], ref(2, 2), tol);
+    CHECK_CLOSE(st[3], ref(0, 1), tol);
+    CHECK_CLOSE(st[4], ref(1, 2), tol);
+    CHECK_CLOSE(st[5], ref(0, 2), tol);
+    CHECK(ep == 0);
+  }
+}
+
 // Closed forms of the neo-Hookean law in 3D: uniaxial stretch and simple shear in x-z.
 void test_neo_hookean() {
   const ElasticConstants el = elastic();
@@ -259,6 +292,7 @@ void test_energy() {
 
 int main() {
   test_linear_elastic();
+  test_linear_elastic_random();
   test_neo_hookean();
   test_von_mises();
   test_drucker_prager();
