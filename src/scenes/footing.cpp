@@ -20,6 +20,7 @@
 // -fbar_pressure cell with -fbar (antilock.hpp; options/footing_cphi.opts).
 #include "pmpm/util/options.hpp"
 #include "pmpm/io/checkpoint.hpp"
+#include "pmpm/model/extrude.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
 #include "pmpm/materials/registry.hpp"
 #include "pmpm/materials/von_mises.hpp"
@@ -49,6 +50,7 @@ class FootingScene final : public Scene {
   PetscErrorCode set_pressure(Simulation &sim, double q) {
     PetscFunctionBeginUser;
     for (ParticleLoad &L : sim.model.loads) L.traction[1] = -q * 2.0 * L.lp[0];
+    if (sim.set.dim == 3) PetscCall(ExtrudeLoads(sim)); // the step reads the extruded table
     PetscFunctionReturn(0);
   }
 
@@ -56,10 +58,11 @@ class FootingScene final : public Scene {
   PetscErrorCode settlement(Simulation &sim, double *s) {
     ParticleView P;
     double v[2] = {0, 0};
+    const int D = sim.parts.dim; // -dim 3: extruded
     PetscFunctionBeginUser;
     PetscCall(ParticlesGetView(sim.parts, P));
     for (const PetscInt p : sim.traction_idx) {
-      v[0] += P.x0[p * DIM + 1] - P.x[p * DIM + 1];
+      v[0] += P.x0[p * D + 1] - P.x[p * D + 1];
       v[1] += 1;
     }
     PetscCall(ParticlesRestoreView(sim.parts, P));
@@ -99,6 +102,10 @@ class FootingScene final : public Scene {
   }
 
 public:
+  // -dim 3: the strip extruded between rollers (plane strain; with -fbar, 3D F-bar), its
+  // settlement and pressure read in any dimension
+  bool extrudes() const override { return true; }
+
   PetscErrorCode setup(Simulation &sim) override {
     PetscInt n = 64;
     PetscBool set = PETSC_FALSE;

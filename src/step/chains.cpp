@@ -140,9 +140,9 @@ extern const StepHook chain_hook = [] {
   StepHook h{};
   h.name = "chains";
   h.active = Active;
-  h.p2g = ParticlesToGrid;
-  h.grid_update = Contact;
-  h.after_g2p = GridToPoints;
+  h.phases.p2g = ParticlesToGrid;
+  h.phases.grid_update = Contact;
+  h.phases.after_g2p = GridToPoints;
   h.reduce = Reductions;
   return h;
 }();

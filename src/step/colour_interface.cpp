@@ -100,13 +100,13 @@ extern const StepHook interface_hook = [] {
   StepHook h{};
   h.name = "interface";
   h.active = Active;
-  h.p2g = ParticlesToGrid;
-  h.ghost_add = GhostAdd;
-  h.after_ghost_add = CellNormals;
-  h.grid_update = Update;
-  h.ghost_scatter = GhostScatter;
-  h.before_g2p = BodyView;
-  h.after_g2p = BodyViewEnd;
+  h.phases.p2g = ParticlesToGrid;
+  h.phases.ghost_add = GhostAdd;
+  h.phases.after_ghost_add = CellNormals;
+  h.phases.grid_update = Update;
+  h.phases.ghost_scatter = GhostScatter;
+  h.phases.before_g2p = BodyView;
+  h.phases.after_g2p = BodyViewEnd;
   return h;
 }();
 

@@ -3,7 +3,8 @@
 // update; PETSc appears only for the ghost exchanges and the migration. The optional physics
 // (chains, the colour interface, F-bar, an imposed eigenstrain, cpGIMP's support check) attach to
 // the phases as hooks (step_hooks.hpp, one file each in src/step/). The phases are templates on
-// the dimension D: Step runs them in 2D, or in 3D under -dim 3 (extrude.hpp), where no hook runs.
+// the dimension D: Step runs them in 2D, or in 3D under -dim 3 (extrude.hpp) with the hooks that
+// have a 3D form.
 #include "pmpm/step/cycle.hpp"
 #include "pmpm/core/shape_cpgimp.hpp"
 #include "pmpm/step/step_hooks.hpp"
@@ -15,28 +16,31 @@ namespace pmpm {
 StepEvents step_events;
 
 namespace {
-// The grid the step runs on: the 2D grid, or -dim 3's (extrude.hpp).
-template <int D> GridT<D> &StepGrid(Simulation &sim) {
-  if constexpr (D == 3)
-    return sim.grid3;
-  else
-    return sim.grid;
-}
-// The phases' hooks run in 2D; -dim 3 refuses every scene or option that would activate one
-// with a member in phases 0-6 (ExtrusionCheck), so in 3D there is nothing to call here (a hook
-// with only after-step members, cpGIMP's support check, runs in Step in both dimensions).
+// Call a phase's member of every active hook that has it in dimension D (StepPhases3 has checked
+// that each active hook has a 3D form of every phase it takes part in).
 template <int D>
-PetscErrorCode Hooks(const ActiveHooks &h, PetscErrorCode (*StepHook::*member)(StepState &),
-                     StepStateT<D> &S) {
+PetscErrorCode Hooks(const ActiveHooks &h,
+                     PetscErrorCode (*HookPhasesT<D>::*member)(StepStateT<D> &), StepStateT<D> &S) {
   PetscFunctionBeginUser;
-  if constexpr (D == DIM)
-    PetscCall(RunHooks(h, member, S));
-  else
-    for (int i = 0; i < h.n; ++i)
-      PetscCheck(!(h.hook[i]->*member), S.sim.comm, PETSC_ERR_SUP,
-                 "-dim 3 does not run %s yet (step %" PetscInt_FMT ")", h.hook[i]->name,
-                 S.sim.run.step);
+  for (int i = 0; i < h.n; ++i)
+    if (const auto f = Phases<D>(*h.hook[i]).*member) PetscCall(f(S));
   PetscFunctionReturn(0);
+}
+
+// Whether a hook's 3D phases cover its 2D ones (a hook with no 3D form for one of its phases
+// cannot run in 3D).
+bool Has3DForm(const StepHook &k) {
+  const HookPhasesT<2> &a = k.phases;
+  const HookPhasesT<3> &b = k.phases3;
+  const bool has2[] = {!!a.before_p2g,      !!a.p2g,         !!a.ghost_add,
+                       !!a.after_ghost_add, !!a.grid_update, !!a.ghost_scatter,
+                       !!a.before_g2p,      !!a.after_g2p,   !!a.stress};
+  const bool has3[] = {!!b.before_p2g,      !!b.p2g,         !!b.ghost_add,
+                       !!b.after_ghost_add, !!b.grid_update, !!b.ghost_scatter,
+                       !!b.before_g2p,      !!b.after_g2p,   !!b.stress};
+  for (int i = 0; i < 9; ++i)
+    if (has2[i] && !has3[i]) return false;
+  return true;
 }
 
 // 1. Particles to grid: mass, momentum, internal and external force (eq. 7-9, 14); then the
@@ -48,7 +52,7 @@ PetscErrorCode ParticlesToGrid(StepStateT<D> &S, const ActiveHooks &h) {
   PetscFunctionBeginUser;
   {
     PmpmLogEventScope(step_events.p2g);
-    PetscCall(GridGetLocal(StepGrid<D>(sim), true, G));
+    PetscCall(GridGetLocal(sim.grid_of<D>(), true, G));
     p2g<Shape>(S.P, S.load, G, nullptr, 0, S.pshift);
     if (!sim.traction_idx.empty()) {
       if constexpr (D == 3) // -dim 3: the extruded table (extrude.hpp)
@@ -56,9 +60,9 @@ PetscErrorCode ParticlesToGrid(StepStateT<D> &S, const ActiveHooks &h) {
       else
         p2g_traction<Shape>(S.P, sim.model.loads, sim.traction_idx, S.load.factor, G);
     }
-    PetscCall(GridRestoreLocal(StepGrid<D>(sim), G));
+    PetscCall(GridRestoreLocal(sim.grid_of<D>(), G));
   }
-  PetscCall(Hooks(h, &StepHook::p2g, S));
+  PetscCall(Hooks(h, &HookPhasesT<D>::p2g, S));
   PetscFunctionReturn(0);
 }
 
@@ -67,10 +71,10 @@ template <int D> PetscErrorCode GhostAdd(StepStateT<D> &S, const ActiveHooks &h)
   PetscFunctionBeginUser;
   {
     PmpmLogEventScope(step_events.l2g);
-    PetscCall(GridLocalToGlobalAdd(StepGrid<D>(S.sim)));
-    PetscCall(Hooks(h, &StepHook::ghost_add, S));
+    PetscCall(GridLocalToGlobalAdd(S.sim.template grid_of<D>()));
+    PetscCall(Hooks(h, &HookPhasesT<D>::ghost_add, S));
   }
-  PetscCall(Hooks(h, &StepHook::after_ghost_add, S));
+  PetscCall(Hooks(h, &HookPhasesT<D>::after_ghost_add, S));
   PetscFunctionReturn(0);
 }
 
@@ -93,11 +97,11 @@ PetscErrorCode GridMomentum(StepStateT<D> &S, const FireMix &fire, const ActiveH
   }
   {
     PmpmLogEventScope(step_events.grid);
-    PetscCall(GridGetGlobal(StepGrid<D>(sim), S.G));
+    PetscCall(GridGetGlobal(sim.grid_of<D>(), S.G));
     grid_update(S.G, gp, S.grid_stats);
   }
-  PetscCall(Hooks(h, &StepHook::grid_update, S));
-  PetscCall(GridRestoreGlobal(StepGrid<D>(sim), S.G));
+  PetscCall(Hooks(h, &HookPhasesT<D>::grid_update, S));
+  PetscCall(GridRestoreGlobal(sim.grid_of<D>(), S.G));
   PetscFunctionReturn(0);
 }
 
@@ -105,8 +109,8 @@ PetscErrorCode GridMomentum(StepStateT<D> &S, const FireMix &fire, const ActiveH
 template <int D> PetscErrorCode GhostScatter(StepStateT<D> &S, const ActiveHooks &h) {
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.g2l);
-  PetscCall(GridGlobalToLocal(StepGrid<D>(S.sim)));
-  PetscCall(Hooks(h, &StepHook::ghost_scatter, S));
+  PetscCall(GridGlobalToLocal(S.sim.template grid_of<D>()));
+  PetscCall(Hooks(h, &HookPhasesT<D>::ghost_scatter, S));
   PetscFunctionReturn(0);
 }
 
@@ -114,7 +118,7 @@ template <int D> PetscErrorCode GhostScatter(StepStateT<D> &S, const ActiveHooks
 // remapped velocity.
 template <class Shape, int D> PetscErrorCode MuslRemap(StepStateT<D> &S) {
   Simulation &sim = S.sim;
-  GridT<D> &g = StepGrid<D>(sim);
+  GridT<D> &g = sim.grid_of<D>();
   GridViewT<D> G;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.musl);
@@ -139,7 +143,7 @@ template <class Shape, int D> PetscErrorCode MuslRemap(StepStateT<D> &S) {
 template <class Shape, int D>
 PetscErrorCode GridToParticles(StepStateT<D> &S, const ActiveHooks &h, const double *elastic) {
   Simulation &sim = S.sim;
-  GridT<D> &g = StepGrid<D>(sim);
+  GridT<D> &g = sim.grid_of<D>();
   G2PParamsT<D> &pp = S.pp;
   GridViewT<D> G;
   std::vector<double> energy;
@@ -153,7 +157,7 @@ PetscErrorCode GridToParticles(StepStateT<D> &S, const ActiveHooks &h, const dou
     for (const auto &m : sim.model.mats) energy.insert(energy.end(), {m.el.E, m.el.nu});
     pp.energy = energy.data();
   }
-  PetscCall(Hooks(h, &StepHook::before_g2p, S));
+  PetscCall(Hooks(h, &HookPhasesT<D>::before_g2p, S));
   {
     PmpmLogEventScope(step_events.g2p);
     PetscCall(GridGetLocal(g, false, G));
@@ -165,7 +169,7 @@ PetscErrorCode GridToParticles(StepStateT<D> &S, const ActiveHooks &h, const dou
     PetscCall(GridRestoreLocal(g, G));
   }
   if (sim.set.musl) PetscCall(MuslRemap<Shape>(S));
-  PetscCall(Hooks(h, &StepHook::after_g2p, S));
+  PetscCall(Hooks(h, &HookPhasesT<D>::after_g2p, S));
   PetscFunctionReturn(0);
 }
 
@@ -185,7 +189,7 @@ bool FusedStress(const Simulation &sim, const ActiveHooks &h, std::vector<double
 template <int D> PetscErrorCode StressUpdate(StepStateT<D> &S, const ActiveHooks &h, bool fused) {
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.stress);
-  PetscCall(Hooks(h, &StepHook::stress, S));
+  PetscCall(Hooks(h, &HookPhasesT<D>::stress, S));
   if (!fused)
     UpdateStresses(S.sim, S.sim.scratch.dudx.data(), S.P.F, S.P.stress, S.P.eps_p, S.eigen);
   PetscFunctionReturn(0);
@@ -196,11 +200,11 @@ PetscErrorCode StepWith(StepStateT<D> &S, const FireMix &fire, const ActiveHooks
   std::vector<double> elastic;
   PetscFunctionBeginUser;
   PetscCall(ParticlesGetView(S.sim.parts, S.P));
-  PetscCall(Hooks(h, &StepHook::before_p2g, S)); // 0. (F-bar's groups)
-  PetscCall(ParticlesToGrid<Shape>(S, h));       // 1.
-  PetscCall(GhostAdd(S, h));                     // 2.
-  PetscCall(GridMomentum(S, fire, h));           // 3.
-  PetscCall(GhostScatter(S, h));                 // 4.
+  PetscCall(Hooks(h, &HookPhasesT<D>::before_p2g, S)); // 0. (F-bar's groups)
+  PetscCall(ParticlesToGrid<Shape>(S, h));             // 1.
+  PetscCall(GhostAdd(S, h));                           // 2.
+  PetscCall(GridMomentum(S, fire, h));                 // 3.
+  PetscCall(GhostScatter(S, h));                       // 4.
   const bool fused = FusedStress(S.sim, h, elastic);
   PetscCall(GridToParticles<Shape>(S, h, fused ? elastic.data() : nullptr)); // 5.
   PetscCall(StressUpdate(S, h, fused));                                      // 6.
@@ -320,7 +324,11 @@ PetscErrorCode StepPhases3(Simulation &sim, const Load &load, double dt, const F
   load3.factor = load.factor;
   load3.shrink = load.shrink;
   for (int d = 0; d < DIM; ++d) load3.gdir[d] = load.gdir[d];
-  load3.gdir[2] = 0; // the 2D scene's gravity, in its plane
+  load3.gdir[2] = 0;            // the 2D scene's gravity, in its plane
+  for (int i = 0; i < h.n; ++i) // the backstop: ExtrusionCheck refuses these before the run
+    PetscCheck(Has3DForm(*h.hook[i]), sim.comm, PETSC_ERR_SUP,
+               "-dim 3 does not run %s yet (step %" PetscInt_FMT ")", h.hook[i]->name,
+               sim.run.step);
   StepStateT<3> S(sim, load3, dt, rep, gs, ps);
   PetscCall(StepPhases(S, fire, h));
   static_cast<GridSums &>(rep.grid) = gs; // the scalars whole, the vectors' x and y
@@ -390,7 +398,7 @@ void StaticForces(Simulation &sim, const ParticleView &P, const LoadT<D> &load,
 }
 
 template <int D> PetscErrorCode StaticResidualIn(Simulation &sim, ShapeKind shape, double *ratio) {
-  GridT<D> &g = StepGrid<D>(sim);
+  GridT<D> &g = sim.grid_of<D>();
   GridViewT<D> G;
   ParticleView P;
   LoadT<D> load;

@@ -26,7 +26,7 @@ extern const StepHook eigenstrain_hook = [] {
   h.name = "eigenstrain";
   h.active = Active;
   h.reads_gradient = true;
-  h.stress = Increment;
+  h.phases.stress = Increment;
   return h;
 }();
 

@@ -5,7 +5,9 @@
 //   particle's isochoric increment (I + du) / sqrt(det) is its own, F and vol follow the
 //   increment, and groups (cells, bodies) do not mix. A uniform increment is left untouched;
 //   fbar_pressure_shift: p + shift is the group's volume-averaged pressure, and the force's power
-//   with it equals the stress power of F-bar's averaged volume rate (conjugacy), for any rates.
+//   with it equals the stress power of F-bar's averaged volume rate (conjugacy), for any rates;
+//   in 3D (-dim 3): the groups of a 3D box of cells, the group's volume ratio with the cube root
+//   (I + du_bar = (dJ_bar / dJ)^(1/3) (I + du)), and the pressure from the six-component stress.
 #include "check.hpp"
 #include "pmpm/core/antilock.hpp"
 #include <cmath>
@@ -45,7 +47,7 @@ void test_groups() {
   }
   s.body[1] = 2;
   std::vector<int> g;
-  fbar_groups(s.P, origin, h, lo, hi, 3, g);
+  fbar_groups<2>(s.P, origin, h, lo, hi, 3, g);
   // particle 0: cell (2, 1) -> ((1-1)*3 + 0)*3 + 0 = 0; particle 1: cell (2, 1), body 2 -> 2
   CHECK(g[0] == 0);
   CHECK(g[1] == 2);
@@ -78,7 +80,7 @@ void test_apply() {
   for (int p = 0; p < 3; ++p) new_sum += s.vol[p], old_sum += old_vol[p];
   const double vol_untouched = s.vol[4], vol_alone = s.vol[3];
   std::vector<double> sums;
-  const double change = fbar_apply(s.P, g, sums, s.du.data());
+  const double change = fbar_apply<2>(s.P, g, sums, s.du.data());
   CHECK(change > 1e-4); // the increments differed: the average moved them
   const double ratio = new_sum / old_sum;
   double after = 0;
@@ -116,7 +118,7 @@ void test_uniform() {
     s.vol[p] = (1.0 + 0.1 * p) * d;
   }
   std::vector<double> sums;
-  CHECK_CLOSE(fbar_apply(s.P, g, sums, s.du.data()), 0.0, 1e-15);
+  CHECK_CLOSE(fbar_apply<2>(s.P, g, sums, s.du.data()), 0.0, 1e-15);
   for (int p = 0; p < 4; ++p)
     for (int k = 0; k < 4; ++k) CHECK_CLOSE(s.du[4 * p + k], du[k], 1e-15);
 }
@@ -131,7 +133,7 @@ void test_pressure_shift() {
     for (int k = 0; k < NSTRESS; ++k) s.stress[NSTRESS * p + k] = r.uniform(-2e4, 1e3);
   }
   std::vector<double> sums, shift;
-  fbar_pressure_shift(s.P, g, sums, shift);
+  fbar_pressure_shift<2>(s.P, g, sums, shift);
   auto pressure = [&](int p) {
     const double *t = &s.stress[NSTRESS * p];
     return (t[0] + t[1] + t[2]) / 3.0;
@@ -165,6 +167,106 @@ void test_pressure_shift() {
   }
 }
 
+// 3D: particles with positions, increments and F of three dimensions.
+struct Particles3 {
+  std::vector<double> x, F, vol, du, stress;
+  std::vector<PetscInt> body;
+  ParticleView P;
+  explicit Particles3(int n)
+      : x(3 * n), F(9 * n), vol(n), du(9 * n), stress(NStress<3> * n), body(n, 0) {
+    P.n = n;
+    P.stress = stress.data();
+    P.x = x.data();
+    P.F = F.data();
+    P.vol = vol.data();
+    P.body = body.data();
+  }
+};
+
+double det3(const double *a) {
+  return a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) +
+         a[2] * (a[3] * a[7] - a[4] * a[6]);
+}
+
+void test_groups_3d() {
+  Particles3 s(4);
+  const double origin[3] = {0.0, -1.0, 2.0}, h = 0.5;
+  const PetscInt lo[3] = {1, 0, 2}, hi[3] = {3, 2, 5}; // owned: i 1..2, j 0..1, k 2..4
+  const double pts[4][3] = {{0.6, -0.9, 3.1}, {1.4, -0.2, 4.6}, {0.4, -0.9, 3.1}, {0.6, -0.9, 4.6}};
+  for (int p = 0; p < 4; ++p)
+    for (int d = 0; d < 3; ++d) s.x[3 * p + d] = pts[p][d];
+  s.body[1] = 1;
+  std::vector<int> g;
+  fbar_groups<3>(s.P, origin, h, lo, hi, 2, g);
+  // particle 0: cell (1, 0, 2) -> ((0 * 2 + 0) * 2 + 0) * 2 + 0 = 0
+  CHECK(g[0] == 0);
+  // particle 1: cell (2, 1, 5)? z = 4.6 -> k = 5, not owned
+  CHECK(g[1] == -1);
+  CHECK(g[2] == -1); // i = 0: not owned
+  // particle 3: cell (1, 0, 5): not owned either; move it to k = 4 (z = 4.1)
+  s.x[3 * 3 + 2] = 4.1;
+  s.x[3 * 1 + 2] = 4.1; // particle 1: cell (2, 1, 4), body 1
+  fbar_groups<3>(s.P, origin, h, lo, hi, 2, g);
+  CHECK(g[3] == ((2 * 2 + 0) * 2 + 0) * 2 + 0);
+  CHECK(g[1] == ((2 * 2 + 1) * 2 + 1) * 2 + 1);
+}
+
+void test_apply_3d() {
+  Particles3 s(4);
+  pmpm_test::Lcg r(5);
+  std::vector<int> g = {0, 0, 0, -1};
+  double old_vol[4], du0[4][9], F0[4][9];
+  for (int p = 0; p < 4; ++p) {
+    double *du = &s.du[9 * p], *F = &s.F[9 * p];
+    for (int k = 0; k < 9; ++k) {
+      du[k] = r.uniform(-0.02, 0.02);
+      F[k] = (k % 4 == 0 ? 1.0 : 0.0) + r.uniform(-0.1, 0.1);
+    }
+    old_vol[p] = r.uniform(0.5, 1.5);
+    double I_du[9];
+    for (int k = 0; k < 9; ++k) I_du[k] = (k % 4 == 0 ? 1.0 : 0.0) + du[k];
+    s.vol[p] = old_vol[p] * det3(I_du);
+    for (int k = 0; k < 9; ++k) du0[p][k] = du[k], F0[p][k] = F[k];
+  }
+  double new_sum = 0, old_sum = 0;
+  for (int p = 0; p < 3; ++p) new_sum += s.vol[p], old_sum += old_vol[p];
+  std::vector<double> sums;
+  CHECK(fbar_apply<3>(s.P, g, sums, s.du.data()) > 1e-4);
+  const double ratio = new_sum / old_sum;
+  for (int p = 0; p < 3; ++p) {
+    double I_du[9], I0[9];
+    for (int k = 0; k < 9; ++k) {
+      I_du[k] = (k % 4 == 0 ? 1.0 : 0.0) + s.du[9 * p + k];
+      I0[k] = (k % 4 == 0 ? 1.0 : 0.0) + du0[p][k];
+    }
+    CHECK_CLOSE(det3(I_du), ratio, 1e-14);
+    CHECK_CLOSE(s.vol[p] / old_vol[p], ratio, 1e-14);
+    const double sc = std::cbrt(ratio / det3(I0)); // the isochoric part is the particle's own
+    for (int k = 0; k < 9; ++k) CHECK_CLOSE(I_du[k], sc * I0[k], 1e-14);
+    for (int k = 0; k < 9; ++k) CHECK_CLOSE(s.F[9 * p + k], sc * F0[p][k], 1e-14);
+  }
+  for (int k = 0; k < 9; ++k) CHECK_CLOSE(s.du[27 + k], du0[3][k], 0.0); // outside: untouched
+}
+
+void test_pressure_shift_3d() {
+  Particles3 s(3);
+  pmpm_test::Lcg r(3);
+  std::vector<int> g = {1, 1, -1};
+  for (int p = 0; p < 3; ++p) {
+    s.vol[p] = r.uniform(0.5, 1.5);
+    for (int k = 0; k < NStress<3>; ++k) s.stress[NStress<3> * p + k] = r.uniform(-2e4, 1e3);
+  }
+  std::vector<double> sums, shift;
+  fbar_pressure_shift<3>(s.P, g, sums, shift);
+  auto pressure = [&](int p) {
+    const double *t = &s.stress[NStress<3> * p];
+    return (t[0] + t[1] + t[2]) / 3.0;
+  };
+  const double pbar = (s.vol[0] * pressure(0) + s.vol[1] * pressure(1)) / (s.vol[0] + s.vol[1]);
+  for (int p = 0; p < 2; ++p) CHECK_CLOSE(pressure(p) + shift[p], pbar, 1e-12 * 2e4);
+  CHECK_CLOSE(shift[2], 0.0, 0.0);
+}
+
 } // namespace
 
 int main() {
@@ -172,5 +274,8 @@ int main() {
   test_apply();
   test_uniform();
   test_pressure_shift();
+  test_groups_3d();
+  test_apply_3d();
+  test_pressure_shift_3d();
   return pmpm_test::report("antilock");
 }

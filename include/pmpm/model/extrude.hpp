@@ -12,7 +12,7 @@
 // keeps the particles of its 3D cells, so nothing is redistributed.
 //
 // What the 3D step does not run yet is refused before the run, by name (ExtrusionCheck): the
-// step's hooks that act inside the step's phases (chains, the colour interface, F-bar, an imposed
+// step's hooks that act inside the step's phases (chains, the colour interface, an imposed
 // eigenstrain; cpGIMP's support check runs after the step and reads the dimension), -solver
 // newton, -geometry axisymmetric, supports inside the box, -balance run, and scenes whose
 // results read the plane only

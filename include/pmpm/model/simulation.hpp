@@ -234,6 +234,13 @@ struct Simulation {
   Grid grid; // the 2D grid (-dim 3: the one the scene generates its plane section on)
   // -dim 3: the 3D grid the step runs on (extrude.hpp)
   GridT<3> grid3;
+  // The grid a D-dimensional step runs on.
+  template <int D> GridT<D> &grid_of() {
+    if constexpr (D == 3)
+      return grid3;
+    else
+      return grid;
+  }
   Balance balance; // -balance: the partition by particle counts (balance.hpp)
   Particles parts;
   InterfaceGrid iface_grid;              // body 1's field, only when an interface is on

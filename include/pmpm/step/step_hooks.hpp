@@ -17,7 +17,7 @@ struct StepEvents {
 };
 extern StepEvents step_events;
 
-// What the phases of one step share, in dimension D (the hooks run in 2D only: D = DIM).
+// What the phases of one step share, in dimension D.
 template <int D> struct StepStateT {
   Simulation &sim;
   const LoadT<D> &load;
@@ -39,25 +39,39 @@ template <int D> struct StepStateT {
 };
 using StepState = StepStateT<DIM>;
 
-// An optional physics of the step.
+// A hook's members for the phases 0-6 of a step in dimension D (null: nothing in that phase).
+template <int D> struct HookPhasesT {
+  PetscErrorCode (*before_p2g)(StepStateT<D> &);      // 0.
+  PetscErrorCode (*p2g)(StepStateT<D> &);             // 1a, 1b: its own nodal values
+  PetscErrorCode (*ghost_add)(StepStateT<D> &);       // 2: its grid's ghost sums (GhostAdd's event)
+  PetscErrorCode (*after_ghost_add)(StepStateT<D> &); // 2b.
+  PetscErrorCode (*grid_update)(StepStateT<D> &);     // 3a, 3b: after the nodal momentum balance
+  PetscErrorCode (*ghost_scatter)(StepStateT<D> &);   // 4: its grid's ghosts (GhostScatter's event)
+  PetscErrorCode (*before_g2p)(StepStateT<D> &);      // 5: what G2P reads (StepState::G1)
+  PetscErrorCode (*after_g2p)(StepStateT<D> &);       // 5', 5a.
+  PetscErrorCode (*stress)(StepStateT<D> &); // 6: before the materials (StressUpdate's event)
+};
+
+// An optional physics of the step. Its phases in 2D, and in 3D (-dim 3) where it has a 3D form: a
+// hook active in a 3D step with a 2D member and no 3D one for a phase stops the run there.
 struct StepHook {
   const char *name;
   bool (*active)(const Simulation &, const Load &);
   // reads or changes the velocity gradient between G2P and the stress update (the stress update
   // then cannot be fused into G2P's particle loop)
   bool reads_gradient;
-  PetscErrorCode (*before_p2g)(StepState &);      // 0.
-  PetscErrorCode (*p2g)(StepState &);             // 1a, 1b: its own nodal values
-  PetscErrorCode (*ghost_add)(StepState &);       // 2: its grid's ghost sums (GhostAdd's event)
-  PetscErrorCode (*after_ghost_add)(StepState &); // 2b.
-  PetscErrorCode (*grid_update)(StepState &);     // 3a, 3b: after the nodal momentum balance
-  PetscErrorCode (*ghost_scatter)(StepState &);   // 4: its grid's ghosts (GhostScatter's event)
-  PetscErrorCode (*before_g2p)(StepState &);      // 5: what G2P reads (StepState::G1)
-  PetscErrorCode (*after_g2p)(StepState &);       // 5', 5a.
-  PetscErrorCode (*stress)(StepState &);          // 6: before the materials (StressUpdate's event)
-  PetscErrorCode (*reduce)(StepState &);          // 7: its share of the step's report
-  PetscErrorCode (*after_step)(StepState &);      // 8: after the migration
+  HookPhasesT<2> phases;  // 0-6 in 2D
+  HookPhasesT<3> phases3; // 0-6 in 3D
+  // after the phases, in both dimensions (the step's 2D state: its report and the simulation)
+  PetscErrorCode (*reduce)(StepState &);     // 7: its share of the step's report
+  PetscErrorCode (*after_step)(StepState &); // 8: after the migration
 };
+template <int D> const HookPhasesT<D> &Phases(const StepHook &h) {
+  if constexpr (D == 3)
+    return h.phases3;
+  else
+    return h.phases;
+}
 
 // Every hook, in the order the phases call them.
 const std::vector<const StepHook *> &StepHooks();
@@ -69,7 +83,8 @@ struct ActiveHooks {
   bool reads_gradient = false;
 };
 ActiveHooks ActiveStepHooks(const Simulation &sim, const Load &load);
-// Call one member of every active hook that has it, in order.
+// Call one of the after-phase members (reduce, after_step) of every active hook that has it, in
+// order.
 PetscErrorCode RunHooks(const ActiveHooks &h, PetscErrorCode (*StepHook::*member)(StepState &),
                         StepState &S);
 
