@@ -178,45 +178,57 @@ void p2g(const ParticleView &P, const LoadT<D> &load, const GridViewT<D> &G, con
     p2g_impl<Shape, D, false, false>(P, load, G, idx, nidx, pshift);
 }
 
-template <class Shape>
+namespace {
+// Zero the FEXT slots of every node of a whole-array view (the body grid's local array).
+template <int D> void zero_fext(const GridViewT<D> &G) {
+  PetscInt nodes = G.gm[0];
+  for (int d = 1; d < D; ++d) nodes *= G.gm[d];
+  for (PetscInt q = 0; q < nodes; ++q)
+    for (int d = 0; d < D; ++d) G.data[q * G.nd + GridDofT<D>::FEXT + d] = 0.0;
+}
+} // namespace
+
+template <class Shape, int D>
 void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt nidx,
-                         const GridView &G) {
+                         const GridViewT<D> &G) {
   // the body grid has no use for its external force: its FEXT slots carry the gradient
-  for (PetscInt q = 0; q < G.gm[0] * G.gm[1]; ++q)
-    for (int d = 0; d < DIM; ++d) G.data[q * G.nd + GridDof::FEXT + d] = 0.0;
-  constexpr int NS = Shape::NS;
-  Weights<Shape> W;
+  zero_fext<D>(G);
+  constexpr int NS = Shape::NS, NN = Weights<Shape, D>::NN;
+  // per h^(D-1): a jump of 1 in colour gives O(1) (V is an area in 2D, a volume in 3D)
+  const double scale = D == 2 ? G.h : G.h * G.h;
+  Weights<Shape, D> W;
   for (PetscInt k = 0; k < nidx; ++k) {
     const PetscInt p = idx[k];
-    double lb[DIM];
-    weights<Shape>(P.x + p * DIM, Shape::half(P.lp + p * DIM, P.F + p * DIM * DIM, lb), G.origin,
-                   G.h, W);
-    const double vc = P.vol[p] * P.colour[p] / G.h; // per h: a jump of 1 in colour gives O(1)
-    for (int b = 0; b < NS; ++b)
-      for (int a = 0; a < NS; ++a) {
-        double *node = G.node(W.base[0] + a, W.base[1] + b);
-        node[GridDof::FEXT + 0] += vc * W.grad[b * NS + a][0];
-        node[GridDof::FEXT + 1] += vc * W.grad[b * NS + a][1];
-      }
+    double lb[D];
+    weights<Shape, D>(P.x + p * D, Shape::template half<D>(P.lp + p * D, P.F + p * D * D, lb),
+                      G.origin, G.h, W);
+    const double vc = P.vol[p] * P.colour[p] / scale;
+    for (int a = 0; a < NN; ++a) { // node a: base + (a % NS, a / NS % NS, a / NS^2)
+      PetscInt n[D];
+      for (int d = 0, r = a; d < D; ++d, r /= NS) n[d] = W.base[d] + r % NS;
+      double *node = G.node(n);
+      for (int d = 0; d < D; ++d) node[GridDofT<D>::FEXT + d] += vc * W.grad[a][d];
+    }
   }
 }
 
-void p2g_cell_colour(const ParticleView &P, const GridView &G) {
-  for (PetscInt q = 0; q < G.gm[0] * G.gm[1]; ++q)
-    for (int d = 0; d < DIM; ++d) G.data[q * G.nd + GridDof::FEXT + d] = 0.0;
+template <int D> void p2g_cell_colour(const ParticleView &P, const GridViewT<D> &G) {
+  zero_fext<D>(G);
   const double invh = 1.0 / G.h;
   for (PetscInt p = 0; p < P.n; ++p) {
     // particles lie inside the grid (checked every step), so the truncation is a floor
-    PetscInt c[DIM];
-    for (int d = 0; d < DIM; ++d) {
-      c[d] = static_cast<PetscInt>((P.x[p * DIM + d] - G.origin[d]) * invh);
+    PetscInt c[D];
+    for (int d = 0; d < D; ++d) {
+      c[d] = static_cast<PetscInt>((P.x[p * D + d] - G.origin[d]) * invh);
       c[d] = std::min(std::max(c[d], PetscInt(0)), G.ncell[d] - 1);
     }
-    double *node = G.node(c[0], c[1]);
-    node[GridDof::FEXT + 0] += P.vol[p] * P.colour[p];
-    node[GridDof::FEXT + 1] += P.vol[p];
+    double *node = G.node(c);
+    node[GridDofT<D>::FEXT + 0] += P.vol[p] * P.colour[p];
+    node[GridDofT<D>::FEXT + 1] += P.vol[p];
   }
 }
+template void p2g_cell_colour<2>(const ParticleView &, const GridViewT<2> &);
+template void p2g_cell_colour<3>(const ParticleView &, const GridViewT<3> &);
 
 void PrescribedVelocitySort(PrescribedVelocity &pv) {
   std::vector<size_t> o(pv.key.size());
@@ -668,8 +680,10 @@ void grid_velocity(const GridViewT<D> &G, const FaceBC *face,
 #define PMPM_INSTANTIATE(S)                                                                        \
   PMPM_INSTANTIATE_D(S, 2)                                                                         \
   PMPM_INSTANTIATE_D(S, 3)                                                                         \
-  template void p2g_colour_gradient<S>(const ParticleView &, const PetscInt *, PetscInt,           \
-                                       const GridView &);
+  template void p2g_colour_gradient<S, 2>(const ParticleView &, const PetscInt *, PetscInt,        \
+                                          const GridViewT<2> &);                                   \
+  template void p2g_colour_gradient<S, 3>(const ParticleView &, const PetscInt *, PetscInt,        \
+                                          const GridViewT<3> &);
 PMPM_INSTANTIATE(LinearShape)
 PMPM_INSTANTIATE(UGIMPShape)
 PMPM_INSTANTIATE(CPGIMPShape)

@@ -1,5 +1,6 @@
 // -dim 3: a 2D scene extruded along z (extrude.hpp).
 #include "pmpm/model/extrude.hpp"
+#include "pmpm/contact/interface.hpp"
 #include "pmpm/model/balance.hpp"
 #include "pmpm/util/options.hpp"
 #include <cmath>
@@ -28,7 +29,6 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
       {sim.balance.mode == BalanceMode::Run,
        "-balance run (the 3D partition is PETSc's or -da_processors_x/y/z)"},
       {!sim.model.chain_specs.empty(), "membrane chains"},
-      {sim.model.iface.type != InterfaceType::Bonded, "-interface_type other than bonded"},
   };
   for (const auto &r : refusals)
     PmpmCheckInput(!r.refused, sim.comm, PETSC_ERR_SUP, "-dim 3 does not run %s yet", r.what);
@@ -139,6 +139,9 @@ PetscErrorCode ExtrudedGridAndParticles(Simulation &sim, const MemoryCheck &mem)
     PetscCall(CheckMemoryExtruded(sim, mem, ncell[2], static_cast<PetscInt>(init.size())));
     PetscCall(ParticlesAdd(sim.parts, init));
   }
+  // the colour interface's body grid, beside the 3D grid as balanced (interface.hpp)
+  if (sim.model.iface.type != InterfaceType::Bonded)
+    PetscCall(InterfaceGridCreate(sim.grid3, sim.iface_grid));
   PetscCall(SimulationIndexParticles(sim));
   PetscInt n;
   PetscCall(ParticlesGlobalCount(sim.parts, &n));

@@ -171,7 +171,9 @@ constexpr double kParticleBytes3 = 33 * 8 + 4 * sizeof(PetscInt) + 16 + sizeof(P
 PetscErrorCode CheckMemoryExtruded(Simulation &sim, const MemoryCheck &m, PetscInt nz,
                                    PetscInt nlocal) {
   PetscFunctionBeginUser;
-  const double per_node = 2.0 * 8 * GridDofT<3>::NDOF + kGridBytesPerNode3;
+  // the colour interface's body grid (local and global vectors) doubles the nodal values
+  const bool iface = sim.model.iface.type != InterfaceType::Bonded;
+  const double per_node = (iface ? 4.0 : 2.0) * 8 * GridDofT<3>::NDOF + kGridBytesPerNode3;
   if (nlocal == 0) {
     const double nodes =
         (double)(sim.model.ncell[0] + 1) * (double)(sim.model.ncell[1] + 1) * (double)(nz + 1);

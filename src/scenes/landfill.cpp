@@ -72,28 +72,28 @@ class LandfillScene final : public Scene {
     ParticleView P;
     PetscFunctionBeginUser;
     const double dx = sim.set.h / sim.set.ppc, ytop = Hw_ + t_, ybot = Hw_;
+    const int D = sim.parts.dim, NS = D == 3 ? NStress<3> : NSTRESS; // -dim 3: extruded
     PetscCall(ParticlesGetView(sim.parts, P));
     for (PetscInt p = 0; p < P.n; ++p) {
-      const double y0 = P.x0[p * DIM + 1];
+      const double y0 = P.x0[p * D + 1];
       if (P.mat[p] != MEMBRANE) {
         const double kind = (y0 > ytop && y0 < ytop + dx)   ? 1
                             : (y0 < ybot && y0 > ybot - dx) ? 2
                                                             : 0;
         if (kind > 0) {
-          const double row[NF] = {P.x0[p * DIM], y0,  P.x[p * DIM], P.x[p * DIM + 1], 0, 0,
-                                  P.vol0[p],     kind};
+          const double row[NF] = {P.x0[p * D], y0, P.x[p * D], P.x[p * D + 1],
+                                  0,           0,  P.vol0[p],  kind};
           mine.insert(mine.end(), row, row + NF);
         }
         continue;
       }
-      const double *F = P.F + p * DIM * DIM, *s = P.stress + p * NSTRESS;
+      const double *F = P.F + p * D * D, *s = P.stress + p * NS;
       // axial direction: the initial x axis, carried by F
-      const double ax = F[0], ay = F[2], lam = std::hypot(ax, ay);
+      const double ax = F[0], ay = F[D], lam = std::hypot(ax, ay);
       const double tx = ax / lam, ty = ay / lam;
       const double sig = tx * tx * s[0] + ty * ty * s[1] + 2 * tx * ty * s[3];
-      const double row[NF] = {
-          P.x0[p * DIM], P.x0[p * DIM + 1], P.x[p * DIM], P.x[p * DIM + 1], lam - 1.0,
-          sig,           P.vol0[p],         0.0};
+      const double row[NF] = {P.x0[p * D], P.x0[p * D + 1], P.x[p * D], P.x[p * D + 1], lam - 1.0,
+                              sig,         P.vol0[p],       0.0};
       mine.insert(mine.end(), row, row + NF);
     }
     PetscCall(ParticlesRestoreView(sim.parts, P));
@@ -202,6 +202,10 @@ class LandfillScene final : public Scene {
   }
 
 public:
+  // -dim 3: the cover extruded between rollers (plane strain; its interface in 3D), the membrane's
+  // profile gathered over every z copy of a column
+  bool extrudes() const override { return true; }
+
   PetscErrorCode setup(Simulation &sim) override {
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "landfill_", "Landfill cover (paper Section 4)", nullptr);

@@ -42,11 +42,12 @@ struct InterfaceParams {
   InterfaceType type = InterfaceType::Bonded;
   InterfaceNormals normals = InterfaceNormals::Cells;
   double mu_top = 0.5, mu_bottom = 0.5;
-  double tail_share = 1e-3;    // below this share of a node's mass a body takes the common
-                               // acceleration there (its own f/m is unreliable)
-  double up[DIM] = {0.0, 1.0}; // against gravity
+  double tail_share = 1e-3;       // below this share of a node's mass a body takes the common
+                                  // acceleration there (its own f/m is unreliable)
+  double up[3] = {0.0, 1.0, 0.0}; // against gravity (-dim 3: in the scene's plane)
   double dt = 0, damping_alpha = 0;
-  FaceBC face[2 * DIM] = {FaceBC::Free, FaceBC::Free, FaceBC::Free, FaceBC::Free};
+  FaceBC face[6] = {FaceBC::Free, FaceBC::Free, FaceBC::Free,
+                    FaceBC::Free, FaceBC::Free, FaceBC::Free}; // the box's faces, as Model::face
 };
 
 struct InterfaceStats {
@@ -57,23 +58,35 @@ struct InterfaceStats {
   double compression = 0, tension = 0;
 };
 
-// On owned nodes: T is the total field after grid_update (v_cm, a_cm); B holds body 1's sums
-// (mass, momentum, force, colour gradient). On return B holds body 1's velocity and acceleration
-// and T body 2's, wherever both bodies meet (elsewhere B = T).
-void interface_update(const GridView &T, const GridView &B, const InterfaceParams &prm,
+// On owned nodes of a D-dimensional grid (D = 2, 3): T is the total field after grid_update
+// (v_cm, a_cm); B holds body 1's sums (mass, momentum, force, colour gradient). On return B holds
+// body 1's velocity and acceleration and T body 2's, wherever both bodies meet (elsewhere B = T).
+// The normal, the tangential difference and the friction cone are vectors in D; the faces held
+// are prm.face[0 .. 2D).
+template <int D>
+void interface_update(const GridViewT<D> &T, const GridViewT<D> &B, const InterfaceParams &prm,
                       InterfaceStats &stats);
 
 // The paper's normals, second half: C is the ghosted view of the cell sums of p2g_cell_colour
-// (cell (i, j) at node (i, j)), B the owned nodes of the body grid; B's FEXT slots receive minus
-// the central difference of the cell-average colour times h, which points out of body 1.
-void cell_colour_normals(const GridView &C, const GridView &B);
+// (cell c at node c), B the owned nodes of the body grid; B's FEXT slots receive minus the
+// central difference of the cell-average colour times h (the mean over the node's 2^D cells),
+// which points out of body 1.
+template <int D> void cell_colour_normals(const GridViewT<D> &C, const GridViewT<D> &B);
 
-// The second DMDA (same partition as the grid) that carries body 1.
+// The second DMDA (same partition as the grid) that carries body 1: `body` beside the 2D grid,
+// `body3` beside the 3D one (-dim 3).
 struct InterfaceGrid {
   Grid body;
+  GridT<3> body3;
   bool active = false;
+  template <int D> GridT<D> &body_of() {
+    if constexpr (D == 3)
+      return body3;
+    else
+      return body;
+  }
 };
-PetscErrorCode InterfaceGridCreate(Grid &g, InterfaceGrid &ig);
+template <int D> PetscErrorCode InterfaceGridCreate(GridT<D> &g, InterfaceGrid &ig);
 PetscErrorCode InterfaceGridDestroy(InterfaceGrid &ig);
 
 } // namespace pmpm

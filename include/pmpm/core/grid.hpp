@@ -109,8 +109,8 @@ template <int D> PetscErrorCode GridGetGlobal(GridT<D> &g, GridViewT<D> &v);
 template <int D> PetscErrorCode GridRestoreGlobal(GridT<D> &g, GridViewT<D> &v);
 // f(view) between GridGetLocal (zero as there) and GridRestoreLocal, or between GridGetGlobal and
 // GridRestoreGlobal: a view that lives for one piece of work. f returns nothing or an error code.
-template <class F> PetscErrorCode GridWithLocal(Grid &g, bool zero, F &&f);
-template <class F> PetscErrorCode GridWithGlobal(Grid &g, F &&f);
+template <int D, class F> PetscErrorCode GridWithLocal(GridT<D> &g, bool zero, F &&f);
+template <int D, class F> PetscErrorCode GridWithGlobal(GridT<D> &g, F &&f);
 // Sum the ghosted local contributions into the global vector (ADD_VALUES); with shared, nothing.
 template <int D> PetscErrorCode GridLocalToGlobalAdd(GridT<D> &g);
 // Scatter owned values (and ghosts) back into the local vector, and zero the ghost nodes outside
@@ -118,7 +118,7 @@ template <int D> PetscErrorCode GridLocalToGlobalAdd(GridT<D> &g);
 template <int D> PetscErrorCode GridGlobalToLocal(GridT<D> &g);
 
 namespace detail {
-template <class F> PetscErrorCode CallOnView(F &f, GridView &v) {
+template <class F, class View> PetscErrorCode CallOnView(F &f, View &v) {
   if constexpr (std::is_void_v<decltype(f(v))>) {
     f(v);
     return 0;
@@ -128,16 +128,16 @@ template <class F> PetscErrorCode CallOnView(F &f, GridView &v) {
 }
 } // namespace detail
 
-template <class F> PetscErrorCode GridWithLocal(Grid &g, bool zero, F &&f) {
-  GridView v;
+template <int D, class F> PetscErrorCode GridWithLocal(GridT<D> &g, bool zero, F &&f) {
+  GridViewT<D> v;
   PetscFunctionBeginUser;
   PetscCall(GridGetLocal(g, zero, v));
   PetscCall(detail::CallOnView(f, v));
   PetscCall(GridRestoreLocal(g, v));
   PetscFunctionReturn(0);
 }
-template <class F> PetscErrorCode GridWithGlobal(Grid &g, F &&f) {
-  GridView v;
+template <int D, class F> PetscErrorCode GridWithGlobal(GridT<D> &g, F &&f) {
+  GridViewT<D> v;
   PetscFunctionBeginUser;
   PetscCall(GridGetGlobal(g, v));
   PetscCall(detail::CallOnView(f, v));

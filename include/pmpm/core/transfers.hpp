@@ -57,14 +57,15 @@ void p2g(const ParticleView &P, const LoadT<D> &load, const GridViewT<D> &G,
 // points out of it (S_i falls away from node i), written over the FEXT slots of the whole view.
 // In full cells it equals h times minus the central difference of the cell-average colour at
 // the node; it differs in part-filled cells and reaches every node body 1's blocks touch.
-template <class Shape>
+// (D = 2, 3: the same in 3D, the gradient per h^2 of a volume.)
+template <class Shape, int D>
 void p2g_colour_gradient(const ParticleView &P, const PetscInt *idx, PetscInt nidx,
-                         const GridView &G);
+                         const GridViewT<D> &G);
 
 // The paper's normals (section 3.2), first half: per cell, the volume of colour and the volume of
 // all particles whose centres lie in it, summed over every particle (both bodies), into the FEXT
 // slots of the cell's lower-left node. interface.hpp's cell_colour_normals finishes them.
-void p2g_cell_colour(const ParticleView &P, const GridView &G);
+template <int D> void p2g_cell_colour(const ParticleView &P, const GridViewT<D> &G);
 
 // Surface tractions act at the particle's face point x + tface (tface scaled with the Shape's
 // block when it deforms); linear hats there give the consistent nodal load of a traction on the
