@@ -26,11 +26,22 @@ namespace pmpm {
 
 class InclineScene final : public Scene {
   double theta_ = 30, Lb_ = 0.2, Hb_ = 0.1, Lbase_ = 1.0, Hbase_ = 0.1, x0_ = 0.1;
+  // -dim 3: the slope's fall line turned by phi about the base's normal (y), and the block's z
+  // extent [z0, z0 + width) (width 0: the whole depth, the extruded plane-strain block)
+  double phi_ = 0, z0_ = 0, Wb_ = 0;
   PetscBool chain_ = PETSC_FALSE, pin_ = PETSC_FALSE; // a membrane chain under the block
   double thickness_ = 0.0015;                         // its thickness (m)
   std::vector<double> t_, v_, s_; // rank 0: time, block velocity and displacement along x
+  double sz_ = 0;                 // -dim 3: the block's mean displacement along z (last monitor)
 
 public:
+  // -dim 3: extruded; with -incline_azimuth the block slides down a fall line in x-z
+  bool extrudes() const override { return true; }
+  bool keeps_extruded(const double x[3]) const override {
+    const bool block = x[1] >= Hbase_;
+    return !block || Wb_ <= 0 || (x[2] > z0_ && x[2] < z0_ + Wb_);
+  }
+
   PetscErrorCode setup(Simulation &sim) override {
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "incline_", "Block on an incline (rotated gravity)", nullptr);
@@ -54,6 +65,16 @@ public:
                          nullptr, chain_, &chain_, nullptr));
     PetscCall(PetscOptionsBool("-chain_pin", "Pin both ends of the membrane chain (supports)",
                                nullptr, pin_, &pin_, nullptr));
+    PetscCall(PmpmOptionsReal("-azimuth",
+                              "-dim 3: the fall line turned by this angle (degrees, 0..90) from x "
+                              "towards z about the base's normal; gravity (sin t cos a, -cos t, "
+                              "sin t sin a)",
+                              nullptr, phi_, &phi_, nullptr));
+    PetscCall(PmpmOptionsReal("-block_z", "-dim 3: the block's start along z (m), >= 0", nullptr,
+                              z0_, &z0_, nullptr));
+    PetscCall(PmpmOptionsReal("-block_width",
+                              "-dim 3: the block's extent along z (m); 0: the whole depth", nullptr,
+                              Wb_, &Wb_, nullptr));
     PetscOptionsEnd();
     PetscOptionsBegin(sim.comm, "membrane_", "The membrane (with -incline_chain)", nullptr);
     PetscCall(PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, thickness_,
@@ -69,9 +90,24 @@ public:
     PetscCall(CheckCells(sim.comm, "-incline_block_length", Lb_, sim.set.h, &n));
     PmpmCheckInput(x0_ >= 0 && x0_ + Lb_ <= Lbase_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-incline_block_x: the block must start on the base");
-    const double th = theta_ * M_PI / 180;
-    sim.set.gdir[0] = std::sin(th);
+    PmpmCheckInput(phi_ >= 0 && phi_ <= 90, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-incline_azimuth must be in [0, 90] degrees (got %g)", phi_);
+    PmpmCheckInput(sim.set.dim == 3 || (phi_ == 0 && z0_ == 0 && Wb_ == 0), sim.comm,
+                   PETSC_ERR_ARG_INCOMP,
+                   "-incline_azimuth, -incline_block_z and -incline_block_width need -dim 3");
+    PmpmCheckInput(z0_ >= 0 && Wb_ >= 0 && z0_ + Wb_ <= sim.set.depth * (1 + 1e-12), sim.comm,
+                   PETSC_ERR_ARG_OUTOFRANGE,
+                   "-incline_block_z %g and -incline_block_width %g m: the block must lie within "
+                   "-depth %g m",
+                   z0_, Wb_, sim.set.depth);
+    PmpmCheckInput(phi_ == 0 || Wb_ > 0, sim.comm, PETSC_ERR_ARG_INCOMP,
+                   "-incline_azimuth %g needs -incline_block_width > 0: a block over the whole "
+                   "depth cannot slide along z",
+                   phi_);
+    const double th = theta_ * M_PI / 180, ph = phi_ * M_PI / 180;
+    sim.set.gdir[0] = std::sin(th) * std::cos(ph);
     sim.set.gdir[1] = -std::cos(th);
+    sim.set.gdir_z = std::sin(th) * std::sin(ph);
     sim.model.origin[0] = sim.model.origin[1] = 0;
     sim.model.face[YMIN] = FaceBC::Fixed;
     sim.model.mats.resize(2);
@@ -137,20 +173,32 @@ public:
 
   PetscErrorCode monitor(Simulation &sim) override {
     ParticleView P;
-    double s[3] = {0, 0, 0}; // block mass, momentum x, mass * displacement x
+    // block mass, momentum and mass * displacement along the fall line (x, or -dim 3's x-z
+    // direction (cos a, sin a)), mass * displacement along z
+    double s[4] = {0, 0, 0, 0};
     PetscFunctionBeginUser;
+    const int D = sim.parts.dim;
+    const double ph = phi_ * M_PI / 180, e[3] = {std::cos(ph), 0.0, std::sin(ph)};
     PetscCall(ParticlesGetView(sim.parts, P));
     for (PetscInt p = 0; p < P.n; ++p)
       if (P.mat[p] == 0) {
+        const double *v = P.v + p * D, *x = P.x + p * D, *x0 = P.x0 + p * D;
+        double vs = v[0] * e[0], us = (x[0] - x0[0]) * e[0];
+        if (D == 3) {
+          vs += v[2] * e[2];
+          us += (x[2] - x0[2]) * e[2];
+          s[3] += P.mass[p] * (x[2] - x0[2]);
+        }
         s[0] += P.mass[p];
-        s[1] += P.mass[p] * P.v[p * DIM];
-        s[2] += P.mass[p] * (P.x[p * DIM] - P.x0[p * DIM]);
+        s[1] += P.mass[p] * vs;
+        s[2] += P.mass[p] * us;
       }
     PetscCall(ParticlesRestoreView(sim.parts, P));
-    PetscCall(SumAll(sim.comm, s, 3));
+    PetscCall(SumAll(sim.comm, s, 4));
     t_.push_back(sim.run.time);
     v_.push_back(s[1] / s[0]);
     s_.push_back(s[2] / s[0]);
+    sz_ = s[3] / s[0];
     PetscFunctionReturn(0);
   }
 
@@ -179,6 +227,7 @@ public:
            sep + json_kv("acceleration_exact", a_exact) + sep +
            json_kv("acceleration_free_slip", g * std::sin(th)) + sep +
            json_kv("displacement", s_.empty() ? 0.0 : s_.back()) + sep +
+           json_kv("azimuth_deg", phi_) + sep + json_kv("displacement_z", sz_) + sep +
            json_kv("displacement_exact", 0.5 * a_exact * T * T) + sep +
            "\"sticks_exact\": " + (sticks ? "true" : "false") + sep +
            json_kv("contact_nodes",

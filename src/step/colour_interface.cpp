@@ -74,8 +74,10 @@ template <int D> PetscErrorCode Update(StepStateT<D> &S) {
   InterfaceParams ip = S.sim.model.iface;
   ip.dt = S.dt;
   ip.damping_alpha = S.gp.damping_alpha;
-  if (D == 3) // the z faces (-bc_zmin, -bc_zmax); gravity stays in the scene's plane
+  if (D == 3) { // the z faces (-bc_zmin, -bc_zmax) and gravity's z component
     for (int f = 4; f < 6; ++f) ip.face[f] = S.sim.model.face[f];
+    ip.up[2] = -S.sim.set.gdir_z;
+  }
   PetscCall(GridWithGlobal(
       BodyGrid(S), [&](const GridViewT<D> &B) { interface_update(S.G, B, ip, S.rep.iface); }));
   PetscFunctionReturn(0);

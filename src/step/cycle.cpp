@@ -324,8 +324,8 @@ PetscErrorCode StepPhases3(Simulation &sim, const Load &load, double dt, const F
   load3.factor = load.factor;
   load3.shrink = load.shrink;
   for (int d = 0; d < DIM; ++d) load3.gdir[d] = load.gdir[d];
-  load3.gdir[2] = 0;            // the 2D scene's gravity, in its plane
-  for (int i = 0; i < h.n; ++i) // the backstop: ExtrusionCheck refuses these before the run
+  load3.gdir[2] = sim.set.gdir_z; // the 2D scene's gravity, in its plane unless turned
+  for (int i = 0; i < h.n; ++i)   // the backstop: ExtrusionCheck refuses these before the run
     PetscCheck(Has3DForm(*h.hook[i]), sim.comm, PETSC_ERR_SUP,
                "-dim 3 does not run %s yet (step %" PetscInt_FMT ")", h.hook[i]->name,
                sim.run.step);

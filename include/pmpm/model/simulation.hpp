@@ -59,6 +59,7 @@ struct Settings {
   Transfer transfer = Transfer::Flip; // -transfer apic: affine transfers (affine.hpp)
   InertiaScaling inertia = InertiaScaling::WaveSpeed;
   double gdir[DIM] = {0.0, -1.0};
+  double gdir_z = 0.0; // -dim 3: gravity's z component (the incline's azimuth; 0: in the plane)
   double progress_seconds = 2.0;
   bool dynamic = false; // -dynamic: no damping, no convergence test (run max_steps)
   bool musl = false;    // -musl: recompute nodal velocities from updated particle momenta
