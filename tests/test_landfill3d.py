@@ -16,6 +16,7 @@ mass, momentum, force and normals on a second 3D DMDA, the friction cone a 3D ve
    (-interface_normals particles) on 2 ranks: on the z faces' rollers (symmetry planes) the
    gradient's z component is the mirror's, zero (interface.cpp); before that rule the one-sided
    gradient tilted the normals out of the plane and the 3D stresses were 72 % off the 2D ones.
+   Checkpoint at step 150 and restart: bit for bit on 1 rank, 1e-10 on 2 ranks.
 3. The bonded landfill (no interface) on 1 rank, the same bounds.
 4. Converged (the options' -tol 1e-5), paper interface, 2D on 1 rank and 3D on 2 ranks: the
    settlement at the centre and the peak membrane strain within 1e-6 relative (the runs stop a
@@ -77,6 +78,29 @@ c.check("4 ranks: the 2x1x2 process grid",
 s3 = summary(out + "/paper3d")
 c.check("3D summary: the paper's interface and three cell counts",
         s3["interface"]["type"] == "paper" and len(s3["cells"]) == 3)
+
+# 1b. checkpoint and restart with the interface in 3D: resumed from step 150 on 1 rank (bit for
+# bit: the body grid is rebuilt, the interface's impulse sums come from the checkpoint) and on 2
+# ranks (the particles sent to their cells' owners), against the uninterrupted run
+run(exe, 1, BASE + FIXED + PAPER + d3(0.002) + ["-checkpoint_every", "150"], out + "/ck",
+    capped=True)
+_, full = particles(out + "/paper3d", FIELDS)
+ia_full = summary(out + "/paper3d")["interface"]["normal_impulse_compression"]
+for np_ in (1, 2):
+    d = f"{out}/restart_np{np_}"
+    run(exe, np_, BASE + FIXED + PAPER + d3(0.002) + ["-restart", f"{out}/ck/checkpoint_150.h5"],
+        d, capped=True)
+    _, f = particles(d, FIELDS)
+    dx = np.abs(f["position"] - full["position"]).max() / W
+    ds = np.abs(f["stress"] - full["stress"]).max() / np.abs(full["stress"]).max()
+    di = abs(summary(d)["interface"]["normal_impulse_compression"] / ia_full - 1)
+    if np_ == 1:
+        c.check("restart on 1 rank from step 150: bit for bit (positions, stresses, impulse)",
+                dx == 0 and ds == 0 and di == 0, f"({dx:g} {ds:g} {di:g})")
+    else:
+        c.le("restart on 2 ranks: positions (/W)", dx, 1e-10)
+        c.le("restart on 2 ranks: stresses (/max |stress|)", ds, 1e-10)
+        c.le("restart on 2 ranks: the normal impulse, relative", di, 1e-10)
 
 # 2. Bardenhagen's contact with the particles' normals, 2 ranks
 run(exe, 1, BASE + FIXED + CONTACT, out + "/contact2d", capped=True)
