@@ -57,11 +57,13 @@ class TrapdoorScene final : public Scene, public SupportMotion {
 
   double gamma(const Simulation &sim) const { return sim.model.mats[0].gamma; }
 
-  // The door's nodes move at speed_ (down); the rest of the base is fixed.
+  // The door's nodes move at speed_ (down); the rest of the base is fixed. (-dim 3: the keys of
+  // the 3D grid's nodes, three dofs each.)
   void set_door_speed(Simulation &sim) {
     PrescribedVelocity &pv = sim.prescribed;
+    const PetscInt D = sim.set.dim;
     for (size_t k = 0; k < pv.key.size(); ++k)
-      if (pv.key[k] % DIM == 1) pv.v[k] = -speed_ * pv.weight[k];
+      if (pv.key[k] % D == 1) pv.v[k] = -speed_ * pv.weight[k];
   }
 
   // Terzaghi's arching pressure over gamma H for lateral stress ratio K (docs/method.md,
@@ -99,6 +101,9 @@ class TrapdoorScene final : public Scene, public SupportMotion {
   }
 
 public:
+  // -dim 3: the strip door extruded between rollers (the support table on every node plane)
+  bool extrudes() const override { return true; }
+
   PetscErrorCode setup(Simulation &sim) override {
     PetscInt n = 64;
     PetscBool set = PETSC_FALSE, hset = PETSC_FALSE, wset = PETSC_FALSE;
@@ -171,17 +176,24 @@ public:
                    "-mat_soil_gamma must be > 0: the soil's weight is the door's load");
     // the supports: every node at or below the base; the door's (i <= nb) move, share 1 (1/2 at
     // the edge) of the door's speed, and weigh the door's force by that share
+    // -dim 3: the same on every node plane along z (the door a strip across the depth)
     PrescribedVelocity &pv = sim.prescribed;
     pv = PrescribedVelocity{};
-    for (PetscInt j = 0; j <= base_j_; ++j)
-      for (PetscInt i = 0; i <= nw; ++i) {
-        const double share = i < nb ? 1.0 : (i == nb ? 0.5 : 0.0);
-        for (int d = 0; d < DIM; ++d) {
-          pv.key.push_back(PrescribedKey(i, j, d, sim.model.ncell));
-          pv.v.push_back(0.0);
-          pv.weight.push_back(share);
+    const int D = static_cast<int>(sim.set.dim);
+    const PetscInt nz = D == 3 ? static_cast<PetscInt>(std::llround(sim.set.depth / sim.set.h)) : 0;
+    const PetscInt ncell[3] = {sim.model.ncell[0], sim.model.ncell[1], nz};
+    for (PetscInt k = 0; k <= nz; ++k)
+      for (PetscInt j = 0; j <= base_j_; ++j)
+        for (PetscInt i = 0; i <= nw; ++i) {
+          const double share = i < nb ? 1.0 : (i == nb ? 0.5 : 0.0);
+          const PetscInt n[3] = {i, j, k};
+          for (int d = 0; d < D; ++d) {
+            pv.key.push_back(D == 3 ? PrescribedKey<3>(n, d, ncell)
+                                    : PrescribedKey(i, j, d, sim.model.ncell));
+            pv.v.push_back(0.0);
+            pv.weight.push_back(share);
+          }
         }
-      }
     PrescribedVelocitySort(pv);
     PetscFunctionReturn(0);
   }
@@ -229,8 +241,8 @@ public:
 
   PetscErrorCode end_stage(Simulation &sim, PetscInt k) override {
     PetscFunctionBeginUser;
-    // the force the soil puts on the door (down), over the half-door
-    const double p = -sim.support_force[1] / (0.5 * B_);
+    // the force the soil puts on the door (down), over the half-door (-dim 3: and the depth)
+    const double p = -sim.support_force[1] / (0.5 * B_ * (sim.set.dim == 3 ? sim.set.depth : 1.0));
     rec_d_.push_back(d_);
     rec_p_.push_back(p);
     rec_conv_.push_back(sim.run.converged ? 1 : 0);

@@ -1,0 +1,77 @@
+"""The trapdoor (arching over a yielding strip, docs/trapdoor.md) extruded along z (-dim 3): the
+prescribed nodal velocities of the door and the base (the support table on every node plane of
+the 3D grid) and the door's reaction, against the 2D run.
+
+usage: test_trapdoor3d.py EXE OUTDIR
+
+options/trapdoor.opts at h = 0.125 m (B = 1 m door, H = 2 m of Drucker-Prager sand, phi = 30 deg),
+two lowering stages (0.001 B, 0.005 B), extruded between rollers: a plane-strain problem.
+1. Fixed steps (-tol tiny, 400 steps a stage, the door lowered in each): the 2D run on 1 rank
+   against 3D over 2 cells of depth on 1 and 2 ranks and over 4 cells on 4 ranks (2x1x2): each
+   3D particle's x, y and stresses xx yy zz xy equal its 2D parent's to 1e-10 of the height and
+   of the largest stress; z and yz, xz zero.
+2. Converged (the options' -tol 1e-4), 2D on 1 rank and 3D on 2: the pressure on the door over
+   gamma H at each stage within 1e-3 relative of 2D's (the 3D reaction divided by the depth; the
+   runs stop some steps apart, at the relaxation's tolerance: measured 4e-6, 6e-6 and 6e-5), and
+   the same arching: the door's pressure drops below 0.35 gamma H at 0.005 B.
+The 1e-10 bounds: round-off in sums taken in another order (measured below 1e-13), while a door
+node missed on one z plane or a reaction counted twice is of the order of the load.
+"""
+import sys
+import numpy as np
+from pmpmtest import Checks, particles, run, summary
+
+exe, out = sys.argv[1], sys.argv[2]
+c = Checks("trapdoor3d")
+H = 2.0
+BASE = ["-options_file", "options/trapdoor.opts", "-cell_size", "0.125",
+        "-trapdoor_displacements", "0.001,0.005"]
+FIXED = ["-tol", "1e-30", "-max_steps", "400"]
+FIELDS = ("position", "position0", "stress")
+
+
+def d3(depth):
+    return ["-dim", "3", "-depth", str(depth)]
+
+
+def compare(name, d2, d3_, nz):
+    ids2, f2 = particles(d2, FIELDS)
+    ids3, f3 = particles(d3_, FIELDS)
+    parent = np.searchsorted(ids2, ids3 // nz)
+    ok = len(ids3) == nz * len(ids2) and np.all(ids2[np.minimum(parent, len(ids2) - 1)]
+                                                 == ids3 // nz)
+    c.check(f"{name}: {nz} particles along z per 2D particle", ok, f"({len(ids3)}, {len(ids2)})")
+    if not ok:
+        return
+    x2, s2 = f2["position"][parent], f2["stress"][parent]
+    x3, s3 = f3["position"], f3["stress"]
+    smax = np.abs(s2).max()
+    c.le(f"{name}: x, y equal the 2D run's (/H)", np.abs(x3[:, :2] - x2).max() / H, 1e-10)
+    c.le(f"{name}: z unchanged (/H)", np.abs(x3[:, 2] - f3["position0"][:, 2]).max() / H, 1e-10)
+    c.le(f"{name}: xx yy zz xy equal the 2D run's (/max |stress|)",
+         np.abs(s3[:, :4] - s2).max() / smax, 1e-10)
+    c.le(f"{name}: yz, xz zero (/max |stress|)", np.abs(s3[:, 4:]).max() / smax, 1e-10)
+    c.ge(f"{name}: the soil followed the door (max settlement, m)",
+         -(x2[:, 1] - f2["position0"][parent][:, 1]).min(), 1e-3)
+
+
+run(exe, 1, BASE + FIXED, out + "/fixed2d", capped=True)
+run(exe, 1, BASE + FIXED + d3(0.25), out + "/fixed3d_np1", capped=True)
+compare("1 rank", out + "/fixed2d", out + "/fixed3d_np1", 4)
+run(exe, 2, BASE + FIXED + d3(0.25), out + "/fixed3d_np2", capped=True)
+compare("2 ranks", out + "/fixed2d", out + "/fixed3d_np2", 4)
+grid = ["-da_processors_x", "2", "-da_processors_y", "1", "-da_processors_z", "2"]
+run(exe, 4, BASE + FIXED + d3(0.5) + grid, out + "/fixed3d_np4", capped=True)
+compare("4 ranks (2x1x2)", out + "/fixed2d", out + "/fixed3d_np4", 8)
+
+run(exe, 1, BASE, out + "/conv2d")
+run(exe, 2, BASE + d3(0.25), out + "/conv3d")
+s2 = summary(out + "/conv2d")["results"]["stages"]
+s3 = summary(out + "/conv3d")["results"]["stages"]
+c.check("converged: every stage in 2D and 3D", len(s2) == len(s3) == 3
+        and all(s["converged"] for s in s2 + s3))
+for a, b in zip(s2, s3):
+    c.le(f"door at {a['displacement_over_B']} B: 3D pressure ({b['ratio']:.6f} gamma H) against "
+         f"2D ({a['ratio']:.6f}), relative", abs(b["ratio"] / a["ratio"] - 1), 1e-3)
+c.le("arching: the door's pressure at 0.005 B (gamma H)", s3[-1]["ratio"], 0.35)
+c.done()
