@@ -175,8 +175,6 @@ cases = [
      "membrane chains"),
     ("3D with Newton", ["-options_file", "options/column.opts", "-dim", "3", "-depth", "0.125",
                         "-solver", "newton"], "-solver newton"),
-    ("3D with -balance run", ["-options_file", "options/column.opts", "-dim", "3", "-depth",
-                              "0.125", "-balance", "run"], "-balance run"),
     ("3D process grid finer than the z nodes", ["-options_file", "options/column.opts", "-dim",
                                                 "3", "-depth", "0.03125", "-da_processors_z",
                                                 "2"],

@@ -82,10 +82,12 @@ double Imbalance(const std::vector<double> &counts) {
 
 // The particle-balanced partition of px x py ranks for the particles items[k] (positions by
 // pos(item)): cell bounds per rank column and row (empty if the cells are too few) and the
-// imbalance it would have. Every rank bins its own particles.
+// imbalance it would have. Every rank bins its own particles. -dim 3: g3 is the 3D grid, whose z
+// slabs stay (bz, its cell bounds) while the x and y cuts follow the particles.
 template <class Items, class Pos>
 PetscErrorCode Plan(const Simulation &sim, PetscInt px, PetscInt py, const Items &items, Pos pos,
-                    std::vector<PetscInt> &bx, std::vector<PetscInt> &by, double *predicted) {
+                    std::vector<PetscInt> &bx, std::vector<PetscInt> &by, double *predicted,
+                    const GridT<3> *g3 = nullptr, const std::vector<PetscInt> &bz = {}) {
   PetscFunctionBeginUser;
   // particles per cell column, then per cell row
   const PetscInt nx = sim.model.ncell[0], ny = sim.model.ncell[1];
@@ -103,13 +105,20 @@ PetscErrorCode Plan(const Simulation &sim, PetscInt px, PetscInt py, const Items
     bx.clear();
     PetscFunctionReturn(0);
   }
-  std::vector<double> blk(px * py, 0.0);
+  const PetscInt pz = g3 ? static_cast<PetscInt>(bz.size()) - 1 : 1;
+  std::vector<double> blk(px * py * pz, 0.0);
   for (const auto &q : items) {
     const PetscInt i =
         std::upper_bound(bx.begin(), bx.end(), CellOf(sim, pos(q), 0)) - bx.begin() - 1;
     const PetscInt j =
         std::upper_bound(by.begin(), by.end(), CellOf(sim, pos(q), 1)) - by.begin() - 1;
-    blk[j * px + i] += 1;
+    PetscInt k = 0;
+    if (g3) {
+      PetscInt cz = static_cast<PetscInt>(std::floor((pos(q)[2] - g3->origin[2]) / g3->h));
+      cz = std::min(std::max(cz, PetscInt(0)), g3->ncell[2] - 1);
+      k = std::upper_bound(bz.begin(), bz.end(), cz) - bz.begin() - 1;
+    }
+    blk[(k * py + j) * px + i] += 1;
   }
   PetscCallMPI(
       MPI_Allreduce(MPI_IN_PLACE, blk.data(), (int)blk.size(), MPI_DOUBLE, MPI_SUM, sim.comm));
@@ -301,6 +310,60 @@ PetscErrorCode BalancePartition(Simulation &sim, std::vector<PetscInt> &part) {
   PetscFunctionReturn(0);
 }
 
+namespace {
+// -dim 3, -balance run: the x and y cuts of the 3D process grid from the particles' cell columns
+// and rows (the z slabs kept, as at setup: an extruded scene's particles stay uniform along z),
+// the grid and the interface's body grid rebuilt, and every particle sent to its cell's new owner.
+PetscErrorCode Rebalance3(Simulation &sim, double now) {
+  Balance &b = sim.balance;
+  PetscInt p[3];
+  const PetscInt *l[3];
+  PetscFunctionBeginUser;
+  GridT<3> &g = sim.grid3;
+  PetscCall(DMDAGetInfo(g.da, nullptr, nullptr, nullptr, nullptr, &p[0], &p[1], &p[2], nullptr,
+                        nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(g.da, &l[0], &l[1], &l[2]));
+  const std::vector<PetscInt> bz = CellBounds(l[2], p[2], g.ncell[2]), lz(l[2], l[2] + p[2]);
+  ParticleView P;
+  PetscCall(ParticlesGetView(sim.parts, P));
+  std::vector<PetscInt> idx(P.n), bx, by;
+  for (PetscInt q = 0; q < P.n; ++q) idx[q] = q;
+  const double *x = P.x;
+  double predicted = 1e300;
+  PetscCall(Plan(
+      sim, p[0], p[1], idx, [x](PetscInt q) { return x + q * 3; }, bx, by, &predicted, &g, bz));
+  PetscCall(ParticlesRestoreView(sim.parts, P));
+  if (bx.empty() || predicted >= now * (1 - b.gain)) PetscFunctionReturn(0);
+  std::vector<double> rec;
+  PetscCall(ParticlesPack(sim.parts, rec));
+  const bool iface = sim.iface_grid.active;
+  const double h = g.h, origin[3] = {g.origin[0], g.origin[1], g.origin[2]};
+  const PetscInt ncell[3] = {g.ncell[0], g.ncell[1], g.ncell[2]};
+  const std::vector<PetscInt> lx = NodeCounts(bx), ly = NodeCounts(by);
+  PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
+  PetscCall(InterfaceGridDestroy(sim.iface_grid));
+  PetscCall(GridDestroy(g));
+  PetscCall(GridCreate<3>(sim.comm, h, origin, ncell, 1, 0, g, p[0], p[1], lx.data(), ly.data(),
+                          p[2], lz.data()));
+  if (iface) PetscCall(InterfaceGridCreate(g, sim.iface_grid));
+  PetscCall(ParticlesCreate(g, sim.parts));
+  PetscCall(RecordsRedistribute(sim.comm, g, ParticleRecordWidth(sim.parts), rec));
+  PetscCall(ParticlesUnpack(sim.parts, rec));
+  PetscCall(SimulationIndexParticles(sim));
+  PetscInt n;
+  PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
+  b.last_before = now;
+  PetscCall(RankImbalance(sim.comm, n, &b.last_after));
+  ++b.rebalances;
+  if (!sim.set.quiet)
+    PetscCall(PetscPrintf(sim.comm,
+                          "stage %d: rebalanced (the x and y cuts of the 3D process grid), "
+                          "particles per rank max/mean %.3f -> %.3f\n",
+                          (int)sim.stage, b.last_before, b.last_after));
+  PetscFunctionReturn(0);
+}
+} // namespace
+
 PetscErrorCode BalanceRun(Simulation &sim) {
   Balance &b = sim.balance;
   PetscInt px, py, n;
@@ -311,7 +374,9 @@ PetscErrorCode BalanceRun(Simulation &sim) {
   PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
   double now;
   PetscCall(RankImbalance(sim.comm, n, &now));
-  if (now > b.threshold) {
+  if (now > b.threshold && sim.set.dim == 3) {
+    PetscCall(Rebalance3(sim, now));
+  } else if (now > b.threshold) {
     PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr,
                           nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
     ParticleView P;

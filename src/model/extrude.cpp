@@ -26,8 +26,6 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
   } refusals[] = {
       {s.solver != "relaxation", "-solver newton (use -solver relaxation)"},
       {s.geometry != Geometry::PlaneStrain, "-geometry axisymmetric"},
-      {sim.balance.mode == BalanceMode::Run,
-       "-balance run (the 3D partition is PETSc's or -da_processors_x/y/z)"},
       {!sim.model.chain_specs.empty(), "membrane chains"},
   };
   for (const auto &r : refusals)

@@ -464,11 +464,12 @@ PetscErrorCode RelaxationSolver::CheckStable(Simulation &sim, const StepReport &
     if (!(held <= kEnergyFactor * allowed + st.budget_floor)) {
       double at[4] = {-1, 0, 0, 0};
       PetscCall(FastestParticle(sim, at));
+      const char *unit = sim.set.dim == 3 ? "J" : "J/m"; // 2D: per metre of depth
       snprintf(why_buf, sizeof(why_buf),
-               "kinetic + elastic energy %.3g J/m exceeds %g x (initial kinetic energy + work "
-               "of the loads) = %g x %.3g J/m, energy created by the time integration; fastest "
+               "kinetic + elastic energy %.3g %s exceeds %g x (initial kinetic energy + work "
+               "of the loads) = %g x %.3g %s, energy created by the time integration; fastest "
                "particle %.0f at x = (%g, %g) m, |v| = %.3g m/s",
-               held, kEnergyFactor, kEnergyFactor, allowed, at[0], at[1], at[2], at[3]);
+               held, unit, kEnergyFactor, kEnergyFactor, allowed, unit, at[0], at[1], at[2], at[3]);
       why = why_buf;
     }
   }
