@@ -128,7 +128,7 @@ PetscErrorCode EnergyBudgetInit(Simulation &sim, RelaxationState &st) {
 }
 
 // The fastest particle (where an unstable mode lives): id, position and speed on every rank.
-PetscErrorCode FastestParticle(Simulation &sim, double info[4]) {
+PetscErrorCode FastestParticle(Simulation &sim, double info[5]) {
   ParticleView P;
   struct {
     double v;
@@ -143,14 +143,13 @@ PetscErrorCode FastestParticle(Simulation &sim, double info[4]) {
     if (sp > loc.v || !std::isfinite(sp)) {
       loc.v = std::isfinite(sp) ? sp : 1e300;
       info[0] = static_cast<double>(P.pid[p]);
-      info[1] = P.x[p * D];
-      info[2] = P.x[p * D + 1];
-      info[3] = sp;
+      for (int d = 0; d < D; ++d) info[1 + d] = P.x[p * D + d];
+      info[4] = sp;
     }
   }
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
-  PetscCallMPI(MPI_Bcast(info, 4, MPI_DOUBLE, glob.rank, sim.comm));
+  PetscCallMPI(MPI_Bcast(info, 5, MPI_DOUBLE, glob.rank, sim.comm));
   PetscFunctionReturn(0);
 }
 
@@ -462,14 +461,20 @@ PetscErrorCode RelaxationSolver::CheckStable(Simulation &sim, const StepReport &
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, e, 2, MPI_DOUBLE, MPI_SUM, sim.comm));
     const double held = run.kinetic + e[0], allowed = st.budget_e0 + e[1];
     if (!(held <= kEnergyFactor * allowed + st.budget_floor)) {
-      double at[4] = {-1, 0, 0, 0};
+      double at[5] = {-1, 0, 0, 0, 0}; // id, x, y, z, |v|
       PetscCall(FastestParticle(sim, at));
-      const char *unit = sim.set.dim == 3 ? "J" : "J/m"; // 2D: per metre of depth
+      const bool d3 = sim.set.dim == 3;
+      const char *unit = d3 ? "J" : "J/m"; // 2D: per metre of depth
+      char where[96];
+      if (d3)
+        snprintf(where, sizeof(where), "(%g, %g, %g)", at[1], at[2], at[3]);
+      else
+        snprintf(where, sizeof(where), "(%g, %g)", at[1], at[2]);
       snprintf(why_buf, sizeof(why_buf),
                "kinetic + elastic energy %.3g %s exceeds %g x (initial kinetic energy + work "
                "of the loads) = %g x %.3g %s, energy created by the time integration; fastest "
-               "particle %.0f at x = (%g, %g) m, |v| = %.3g m/s",
-               held, unit, kEnergyFactor, kEnergyFactor, allowed, unit, at[0], at[1], at[2], at[3]);
+               "particle %.0f at x = %s m, |v| = %.3g m/s",
+               held, unit, kEnergyFactor, kEnergyFactor, allowed, unit, at[0], where, at[4]);
       why = why_buf;
     }
   }
