@@ -16,13 +16,15 @@ double shrinkage_grade(const Shrinkage &s, const double X[DIM]) {
   return gx * (s.grade_bottom + r * (s.grade_top - s.grade_bottom));
 }
 
+template <int D>
 double shrinkage_increment(const ParticleView &P, const Shrinkage &s, double amount,
                            std::vector<double> &eigen) {
+  constexpr int NS = NStress<D>; // xx yy zz first in both layouts
   eigen.assign(static_cast<size_t>(P.n) * 3, 0.0);
   double power = 0;
   for (PetscInt p = 0; p < P.n; ++p) {
     if (!s.degrades[P.mat[p]]) continue;
-    const double ev = amount * shrinkage_grade(s, P.x0 + p * DIM);
+    const double ev = amount * shrinkage_grade(s, P.x0 + p * D); // x, y of the initial point
     if (ev == 0) continue;
     double *e = &eigen[3 * p];
     if (s.mode == ShrinkMode::Vertical) {
@@ -30,10 +32,14 @@ double shrinkage_increment(const ParticleView &P, const Shrinkage &s, double amo
     } else {
       e[0] = e[1] = e[2] = -ev / 3;
     }
-    const double *sg = P.stress + p * NSTRESS;
+    const double *sg = P.stress + p * NS;
     power -= P.vol[p] * (sg[0] * e[0] + sg[1] * e[1] + sg[2] * e[2]);
   }
   return power;
 }
+template double shrinkage_increment<2>(const ParticleView &, const Shrinkage &, double,
+                                       std::vector<double> &);
+template double shrinkage_increment<3>(const ParticleView &, const Shrinkage &, double,
+                                       std::vector<double> &);
 
 } // namespace pmpm

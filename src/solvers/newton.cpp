@@ -723,7 +723,7 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   if (ns.shrink != 0) { // this step's share of the eigenstrain, per particle (3: xx yy zz)
     ParticleView P;
     PetscCall(ParticlesGetView(sim.parts, P));
-    shrinkage_increment(P, sim.model.shrink, ns.shrink, ns.eigen);
+    shrinkage_increment<DIM>(P, sim.model.shrink, ns.shrink, ns.eigen);
     PetscCall(ParticlesRestoreView(sim.parts, P));
   }
   double atol = PETSC_DEFAULT;

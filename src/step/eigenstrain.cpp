@@ -11,11 +11,12 @@ bool Active(const Simulation &, const Load &load) {
   return load.shrink != 0;
 }
 
-// 6. Before the materials' update, in its event.
-PetscErrorCode Increment(StepState &S) {
+// 6. Before the materials' update, in its event (2D and 3D: three normal components a particle).
+template <int D> PetscErrorCode Increment(StepStateT<D> &S) {
   Simulation &sim = S.sim;
   PetscFunctionBeginUser;
-  S.rep.eigen_power = shrinkage_increment(S.P, sim.model.shrink, S.load.shrink, sim.scratch.eigen);
+  S.rep.eigen_power =
+      shrinkage_increment<D>(S.P, sim.model.shrink, S.load.shrink, sim.scratch.eigen);
   S.eigen = sim.scratch.eigen.data();
   PetscFunctionReturn(0);
 }
@@ -26,7 +27,8 @@ extern const StepHook eigenstrain_hook = [] {
   h.name = "eigenstrain";
   h.active = Active;
   h.reads_gradient = true;
-  h.phases.stress = Increment;
+  h.phases.stress = Increment<2>;
+  h.phases3.stress = Increment<3>;
   return h;
 }();
 

@@ -40,8 +40,10 @@ double shrinkage_grade(const Shrinkage &s, const double X[DIM]);
 
 // The eigenstrain increment of this step for every particle (3 per particle: xx, yy, zz) for a
 // volumetric shrinkage `amount` of the zone at full grade. Returns this rank's power of the
-// eigenstrain on the current stresses, sum_p V_p sigma_p : (-de*_p) (J/m), for the energy
-// budget of the relaxation.
+// eigenstrain on the current stresses, sum_p V_p sigma_p : (-de*_p) (J/m; J in 3D), for the
+// energy budget of the relaxation. D = 2, 3: the particles' layout (positions of D, NStress<D>
+// stresses); in 3D the zone is a prism along z (graded by the initial x and y).
+template <int D>
 double shrinkage_increment(const ParticleView &P, const Shrinkage &s, double amount,
                            std::vector<double> &eigen);
 
