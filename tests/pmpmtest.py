@@ -94,3 +94,31 @@ def waste_top(out, k):
     top = x0[w, 1].max()
     sel = w & (np.abs(x0[:, 1] - top) < 1e-9)
     return x[sel, 1].mean()
+
+
+def compare_extruded(c, name, d2, d3, nz, length, unit):
+    """-dim 3 against 2D: every particle of the 3D run in d3 (nz along z per 2D particle, id //
+    nz its 2D parent) against its parent in d2: x, y to 1e-10 of `length`, z unchanged, the
+    stresses xx yy zz xy to 1e-10 of the largest and yz, xz zero. Returns the 2D run's
+    (position, position0) rows in the 3D run's order, or None if the particles do not match."""
+    import numpy as np
+    fields = ("position", "position0", "stress")
+    ids2, f2 = particles(d2, fields)
+    ids3, f3 = particles(d3, fields)
+    parent = np.searchsorted(ids2, ids3 // nz)
+    ok = len(ids3) == nz * len(ids2) and np.all(ids2[np.minimum(parent, len(ids2) - 1)]
+                                                 == ids3 // nz)
+    c.check(f"{name}: {nz} particles along z per 2D particle", ok, f"({len(ids3)}, {len(ids2)})")
+    if not ok:
+        return None
+    x2, s2 = f2["position"][parent], f2["stress"][parent]
+    x3, s3 = f3["position"], f3["stress"]
+    smax = np.abs(s2).max()
+    c.le(f"{name}: x, y equal the 2D run's (/{unit})", np.abs(x3[:, :2] - x2).max() / length,
+         1e-10)
+    c.le(f"{name}: z unchanged (/{unit})", np.abs(x3[:, 2] - f3["position0"][:, 2]).max() / length,
+         1e-10)
+    c.le(f"{name}: xx yy zz xy equal the 2D run's (/max |stress|)",
+         np.abs(s3[:, :4] - s2).max() / smax, 1e-10)
+    c.le(f"{name}: yz, xz zero (/max |stress|)", np.abs(s3[:, 4:]).max() / smax, 1e-10)
+    return x2, f2["position0"][parent]

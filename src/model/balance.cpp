@@ -206,6 +206,30 @@ PetscErrorCode BalanceSetup(Simulation &sim, ParticleList &init) {
 }
 
 namespace {
+// -dim 3: the grid (and the interface's body grid, if there is one) rebuilt with the x and y cuts
+// bx, by (cell bounds) on the same process grid, its z slabs kept; the swarm recreated empty.
+PetscErrorCode RebuildGrid3(Simulation &sim, const std::vector<PetscInt> &bx,
+                            const std::vector<PetscInt> &by) {
+  GridT<3> &g = sim.grid3;
+  PetscInt p[3];
+  const PetscInt *l[3];
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetInfo(g.da, nullptr, nullptr, nullptr, nullptr, &p[0], &p[1], &p[2], nullptr,
+                        nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(g.da, &l[0], &l[1], &l[2]));
+  const std::vector<PetscInt> lx = NodeCounts(bx), ly = NodeCounts(by), lz(l[2], l[2] + p[2]);
+  const bool iface = sim.iface_grid.active;
+  const double h = g.h, origin[3] = {g.origin[0], g.origin[1], g.origin[2]};
+  const PetscInt ncell[3] = {g.ncell[0], g.ncell[1], g.ncell[2]};
+  PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
+  PetscCall(InterfaceGridDestroy(sim.iface_grid));
+  PetscCall(GridDestroy(g));
+  PetscCall(GridCreate<3>(sim.comm, h, origin, ncell, 1, 0, g, p[0], p[1], lx.data(), ly.data(),
+                          p[2], lz.data()));
+  if (iface) PetscCall(InterfaceGridCreate(g, sim.iface_grid));
+  PetscCall(ParticlesCreate(g, sim.parts));
+  PetscFunctionReturn(0);
+}
 // -dim 3: max / mean particles per rank of the extruded plane on the partition with cell bounds
 // bx, by, bz: the plane's particles in each column-row block times the block's z cells x ppc.
 double ExtrudedImbalance(const Simulation &sim, const ParticleList &plane,
@@ -252,15 +276,7 @@ PetscErrorCode BalanceSetupExtruded(Simulation &sim, const ParticleList &plane) 
     const double predicted =
         bx.empty() || by.empty() ? 1e300 : ExtrudedImbalance(sim, plane, bx, by, b0[2]);
     if (predicted < b.before * (1 - b.gain)) {
-      const std::vector<PetscInt> lx = NodeCounts(bx), ly = NodeCounts(by), lz(l[2], l[2] + p[2]);
-      const double h = g.h, origin[3] = {g.origin[0], g.origin[1], g.origin[2]};
-      const PetscInt ncell[3] = {g.ncell[0], g.ncell[1], g.ncell[2]}, pz = p[2];
-      const PetscInt px = p[0], py = p[1];
-      PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
-      PetscCall(GridDestroy(g));
-      PetscCall(GridCreate<3>(sim.comm, h, origin, ncell, 1, 0, g, px, py, lx.data(), ly.data(), pz,
-                              lz.data()));
-      PetscCall(ParticlesCreate(g, sim.parts));
+      PetscCall(RebuildGrid3(sim, bx, by));
       b.after = predicted;
       b.rebuilt = true;
     }
@@ -311,62 +327,39 @@ PetscErrorCode BalancePartition(Simulation &sim, std::vector<PetscInt> &part) {
 }
 
 namespace {
-// -dim 3, -balance run: the x and y cuts of the 3D process grid from the particles' cell columns
-// and rows (the z slabs kept, as at setup: an extruded scene's particles stay uniform along z),
-// the grid and the interface's body grid rebuilt, and every particle sent to its cell's new owner.
-PetscErrorCode Rebalance3(Simulation &sim, double now) {
-  Balance &b = sim.balance;
-  PetscInt p[3];
-  const PetscInt *l[3];
+// -balance run's plan from the swarm: the x and y cuts that balance the particles' cell columns
+// and rows on the run's process grid (-dim 3: the z slabs kept, as at setup: an extruded scene's
+// particles stay uniform along z), and the imbalance they would give.
+PetscErrorCode PlanFromSwarm(Simulation &sim, std::vector<PetscInt> &bx, std::vector<PetscInt> &by,
+                             double *predicted) {
+  const int D = static_cast<int>(sim.set.dim);
+  PetscInt p[3] = {1, 1, 1};
+  const PetscInt *l[3] = {nullptr, nullptr, nullptr};
   PetscFunctionBeginUser;
-  GridT<3> &g = sim.grid3;
-  PetscCall(DMDAGetInfo(g.da, nullptr, nullptr, nullptr, nullptr, &p[0], &p[1], &p[2], nullptr,
+  DM da = D == 3 ? sim.grid3.da : sim.grid.da;
+  PetscCall(DMDAGetInfo(da, nullptr, nullptr, nullptr, nullptr, &p[0], &p[1], &p[2], nullptr,
                         nullptr, nullptr, nullptr, nullptr, nullptr));
-  PetscCall(DMDAGetOwnershipRanges(g.da, &l[0], &l[1], &l[2]));
-  const std::vector<PetscInt> bz = CellBounds(l[2], p[2], g.ncell[2]), lz(l[2], l[2] + p[2]);
+  std::vector<PetscInt> bz;
+  if (D == 3) {
+    PetscCall(DMDAGetOwnershipRanges(da, &l[0], &l[1], &l[2]));
+    bz = CellBounds(l[2], p[2], sim.grid3.ncell[2]);
+  }
   ParticleView P;
   PetscCall(ParticlesGetView(sim.parts, P));
-  std::vector<PetscInt> idx(P.n), bx, by;
+  std::vector<PetscInt> idx(P.n);
   for (PetscInt q = 0; q < P.n; ++q) idx[q] = q;
   const double *x = P.x;
-  double predicted = 1e300;
   PetscCall(Plan(
-      sim, p[0], p[1], idx, [x](PetscInt q) { return x + q * 3; }, bx, by, &predicted, &g, bz));
+      sim, p[0], p[1], idx, [x, D](PetscInt q) { return x + q * D; }, bx, by, predicted,
+      D == 3 ? &sim.grid3 : nullptr, bz));
   PetscCall(ParticlesRestoreView(sim.parts, P));
-  if (bx.empty() || predicted >= now * (1 - b.gain)) PetscFunctionReturn(0);
-  std::vector<double> rec;
-  PetscCall(ParticlesPack(sim.parts, rec));
-  const bool iface = sim.iface_grid.active;
-  const double h = g.h, origin[3] = {g.origin[0], g.origin[1], g.origin[2]};
-  const PetscInt ncell[3] = {g.ncell[0], g.ncell[1], g.ncell[2]};
-  const std::vector<PetscInt> lx = NodeCounts(bx), ly = NodeCounts(by);
-  PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
-  PetscCall(InterfaceGridDestroy(sim.iface_grid));
-  PetscCall(GridDestroy(g));
-  PetscCall(GridCreate<3>(sim.comm, h, origin, ncell, 1, 0, g, p[0], p[1], lx.data(), ly.data(),
-                          p[2], lz.data()));
-  if (iface) PetscCall(InterfaceGridCreate(g, sim.iface_grid));
-  PetscCall(ParticlesCreate(g, sim.parts));
-  PetscCall(RecordsRedistribute(sim.comm, g, ParticleRecordWidth(sim.parts), rec));
-  PetscCall(ParticlesUnpack(sim.parts, rec));
-  PetscCall(SimulationIndexParticles(sim));
-  PetscInt n;
-  PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
-  b.last_before = now;
-  PetscCall(RankImbalance(sim.comm, n, &b.last_after));
-  ++b.rebalances;
-  if (!sim.set.quiet)
-    PetscCall(PetscPrintf(sim.comm,
-                          "stage %d: rebalanced (the x and y cuts of the 3D process grid), "
-                          "particles per rank max/mean %.3f -> %.3f\n",
-                          (int)sim.stage, b.last_before, b.last_after));
   PetscFunctionReturn(0);
 }
 } // namespace
 
 PetscErrorCode BalanceRun(Simulation &sim) {
   Balance &b = sim.balance;
-  PetscInt px, py, n;
+  PetscInt n;
   PetscFunctionBeginUser;
   if (b.mode != BalanceMode::Run || sim.size == 1) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(ev_balance, 0, 0, 0, 0));
@@ -374,25 +367,24 @@ PetscErrorCode BalanceRun(Simulation &sim) {
   PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
   double now;
   PetscCall(RankImbalance(sim.comm, n, &now));
-  if (now > b.threshold && sim.set.dim == 3) {
-    PetscCall(Rebalance3(sim, now));
-  } else if (now > b.threshold) {
-    PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr,
-                          nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
-    ParticleView P;
-    PetscCall(ParticlesGetView(sim.parts, P));
-    std::vector<PetscInt> idx(P.n), bx, by;
-    for (PetscInt p = 0; p < P.n; ++p) idx[p] = p;
-    const double *x = P.x;
+  if (now > b.threshold) {
+    std::vector<PetscInt> bx, by;
     double predicted = 1e300;
-    PetscCall(Plan(
-        sim, px, py, idx, [x](PetscInt p) { return x + p * DIM; }, bx, by, &predicted));
-    PetscCall(ParticlesRestoreView(sim.parts, P));
+    PetscCall(PlanFromSwarm(sim, bx, by, &predicted));
     if (!bx.empty() && predicted < now * (1 - b.gain)) {
+      const bool d3 = sim.set.dim == 3;
       std::vector<double> rec;
       PetscCall(ParticlesPack(sim.parts, rec));
-      PetscCall(BalanceRebuildGrid(sim, px, py, NodeCounts(bx), NodeCounts(by)));
-      PetscCall(RecordsRedistribute(sim.comm, sim.grid, ParticleRecordWidth(sim.parts), rec));
+      if (d3) {
+        PetscCall(RebuildGrid3(sim, bx, by));
+        PetscCall(RecordsRedistribute(sim.comm, sim.grid3, ParticleRecordWidth(sim.parts), rec));
+      } else {
+        PetscInt px, py;
+        PetscCall(DMDAGetInfo(sim.grid.da, nullptr, nullptr, nullptr, nullptr, &px, &py, nullptr,
+                              nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
+        PetscCall(BalanceRebuildGrid(sim, px, py, NodeCounts(bx), NodeCounts(by)));
+        PetscCall(RecordsRedistribute(sim.comm, sim.grid, ParticleRecordWidth(sim.parts), rec));
+      }
       PetscCall(ParticlesUnpack(sim.parts, rec));
       PetscCall(SimulationIndexParticles(sim));
       PetscCall(DMSwarmGetLocalSize(sim.parts.sw, &n));
@@ -400,9 +392,10 @@ PetscErrorCode BalanceRun(Simulation &sim) {
       PetscCall(RankImbalance(sim.comm, n, &b.last_after));
       ++b.rebalances;
       if (!sim.set.quiet)
-        PetscCall(PetscPrintf(sim.comm,
-                              "stage %d: rebalanced, particles per rank max/mean %.3f -> %.3f\n",
-                              (int)sim.stage, b.last_before, b.last_after));
+        PetscCall(PetscPrintf(
+            sim.comm, "stage %d: rebalanced%s, particles per rank max/mean %.3f -> %.3f\n",
+            (int)sim.stage, d3 ? " (the x and y cuts of the 3D process grid)" : "", b.last_before,
+            b.last_after));
     }
   }
   double dt = MPI_Wtime() - t0;
