@@ -96,15 +96,15 @@ def waste_top(out, k):
     return x[sel, 1].mean()
 
 
-def compare_extruded(c, name, d2, d3, nz, length, unit):
-    """-dim 3 against 2D: every particle of the 3D run in d3 (nz along z per 2D particle, id //
-    nz its 2D parent) against its parent in d2: x, y to 1e-10 of `length`, z unchanged, the
-    stresses xx yy zz xy to 1e-10 of the largest and yz, xz zero. Returns the 2D run's
-    (position, position0) rows in the 3D run's order, or None if the particles do not match."""
+def compare_extruded(c, name, p2, p3, nz, length, unit):
+    """-dim 3 against 2D: every particle of the 3D run (p3 = particles(dir, fields) with position,
+    position0 and stress; nz along z per 2D particle, id // nz its 2D parent) against its parent
+    in the 2D run p2: x, y to 1e-10 of `length`, z unchanged, the stresses xx yy zz xy to 1e-10 of
+    the largest and yz, xz zero. Returns the 2D run's (position, position0) rows in the 3D run's
+    order, or None if the particles do not match."""
     import numpy as np
-    fields = ("position", "position0", "stress")
-    ids2, f2 = particles(d2, fields)
-    ids3, f3 = particles(d3, fields)
+    ids2, f2 = p2
+    ids3, f3 = p3
     parent = np.searchsorted(ids2, ids3 // nz)
     ok = len(ids3) == nz * len(ids2) and np.all(ids2[np.minimum(parent, len(ids2) - 1)]
                                                  == ids3 // nz)

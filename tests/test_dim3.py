@@ -35,7 +35,7 @@ import re
 import subprocess
 import sys
 import numpy as np
-from pmpmtest import ENV, Checks, particles, run, summary
+from pmpmtest import ENV, Checks, compare_extruded, particles, run, summary
 
 exe, out = sys.argv[1], sys.argv[2]
 c = Checks("dim3")
@@ -60,24 +60,11 @@ MATERIALS = {
 def compare_to_2d(name, p2, p3, nz=NZ, axis=1, moved=1e-5):
     """Every 3D particle (nz along z per 2D particle) against its 2D parent, and the 2D run's
     largest displacement along `axis` at least `moved` x H (the body did deform)."""
-    ids2, f2 = p2
-    ids3, f3 = p3
-    parent = np.searchsorted(ids2, ids3 // nz)
-    ok = len(ids3) == nz * len(ids2) and np.all(ids2[parent] == ids3 // nz)
-    c.check(f"{name}: {nz} particles along z per 2D particle", ok,
-            f"{len(ids3)} vs {len(ids2)}")
-    if not ok:
-        return
-    x2, x3 = f2["position"][parent], f3["position"]
-    s2, s3 = f2["stress"][parent], f3["stress"]
-    smax = np.abs(s2).max()
-    c.le(f"{name}: x, y equal the 2D run's (/H)", np.abs(x3[:, :2] - x2).max() / H, 1e-10)
-    c.le(f"{name}: z unchanged (/H)", np.abs(x3[:, 2] - f3["position0"][:, 2]).max() / H, 1e-10)
-    c.le(f"{name}: xx yy zz xy equal the 2D run's (/max |stress|)",
-         np.abs(s3[:, :4] - s2).max() / smax, 1e-10)
-    c.le(f"{name}: yz, xz zero (/max |stress|)", np.abs(s3[:, 4:]).max() / smax, 1e-10)
-    c.ge(f"{name}: the body deformed (max |u_{'xy'[axis]}| / H)",
-         np.abs(x2[:, axis] - f2["position0"][parent][:, axis]).max() / H, moved)
+    r = compare_extruded(c, name, p2, p3, nz, H, "H")
+    if r is not None:
+        x2, x02 = r
+        c.ge(f"{name}: the body deformed (max |u_{'xy'[axis]}| / H)",
+             np.abs(x2[:, axis] - x02[:, axis]).max() / H, moved)
 
 
 # 1. fixed steps, linear elastic on 1, 2 and 4 ranks

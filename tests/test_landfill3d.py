@@ -46,7 +46,8 @@ def d3(depth):
 
 def compare(name, d2, d3_, nz):
     """Every 3D particle (nz along z per 2D particle) against its 2D parent; the cover moved."""
-    r = compare_extruded(c, name, d2, d3_, nz, W, "W")
+    r = compare_extruded(c, name, particles(d2, FIELDS), particles(d3_, FIELDS), nz, W,
+                         "W")
     if r is not None:
         x2, x02 = r
         c.ge(f"{name}: the cover settled (max |u_y| / W)",

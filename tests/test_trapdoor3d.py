@@ -43,7 +43,8 @@ def d3(depth):
 
 def compare(name, d2, d3_, nz):
     """Every 3D particle (nz along z per 2D particle) against its 2D parent; the soil moved."""
-    r = compare_extruded(c, name, d2, d3_, nz, H, "H")
+    r = compare_extruded(c, name, particles(d2, FIELDS), particles(d3_, FIELDS), nz, H,
+                         "H")
     if r is not None:
         x2, x02 = r
         c.ge(f"{name}: the soil followed the door (max settlement, m)",
