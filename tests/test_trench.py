@@ -6,71 +6,56 @@ usage: test_trench.py EXE NP OUTDIR
 
 The scene (B = 2 m, D = 0.75 m, H = 1 m, J = 0.6 MN/m, textured HDPE mu = tan 30 deg on both faces,
 Drucker-Prager cover phi = 32 deg, c = 0) at h = 0.25, 0.125 and 0.0625 m (8, 16 and 32 cells
-across the trench), the load ramp and the step budget scaled with 1 / h (800 / 4,000, 1,600 /
-8,000 and 3,200 / 16,000 steps; 9 min on 2 shared cores). Measured (2 ranks), the sheet's strain
-projected on the grid (-chain_strain_projection, the default):
+across the trench), the load ramp scaled with 1 / h (800, 1,600, 3,200 steps), each run to the
+shipped -tol 1e-3. Measured on 2026-12-05 (2 ranks; 2,092, 10,108 and 21,712 steps), the sheet's
+strain projected on the grid (-chain_strain_projection, the default):
 
     h (m)                      0.25      0.125     0.0625
-    chord sag (m)              0.2901    0.2797    0.2847
-    strain at mid-span (%)     4.41      4.55      4.52
-    mean strain over void (%)  4.58      4.48      4.33
-    peak strain in span (%)    4.86      4.65      4.53   (0.47, 0.20, 0.82 m from the edge)
-    tension at mid-span (kN/m) 26.5      27.3      27.1
-    arc pressure T/R (kPa)     14.2      14.2      14.3   (Terzaghi: K = 1 14.1, K = Ka 17.3)
-    pull-in, both sides (mm)   26        24        33
-    Giroud, arc pressure       0.268 m / 4.72 %, 0.268 / 4.72, 0.269 / 4.75
-    Giroud + simulated pull-in 0.295 m / 4.34 %, 0.293 / 4.37, 0.303 / 4.30
-
-With the chord strain (-chain_strain_projection 0; the numbers in the bullets below where marked)
-the peak in the span was 6.49, 5.72, 5.54 % (the cell-period oscillation at the edge), the sag
-0.2891, 0.2864, 0.2891 m and the mid-span strain 4.30, 4.52, 4.52 %.
+    chord sag (m)              0.2760    0.2797    0.2846
+    strain at mid-span (%)     4.24      4.47      4.53
+    mean strain over void (%)  4.75      4.59      4.54
+    peak strain in span (%)    4.70      4.65      4.62   (0.22, 0.08, 0.02 m from the edge)
+    tension at mid-span (kN/m) 25.5      26.8      27.2
+    arc pressure T/R (kPa)     13.1      13.9      14.3   (Terzaghi: K = 1 14.1, K = Ka 17.3)
+    pull-in, both sides (mm)   14        26        31
+    Giroud, arc pressure       0.260 m / 4.46 %, 0.266 / 4.66, 0.269 / 4.76
+    Giroud + simulated pull-in 0.275 m / 4.26 %, 0.294 / 4.29, 0.301 / 4.32
 
 Bounds and why:
-- Relaxation: the runs do not reach -tol 1e-4 (the unbalanced-force ratio plateaus at 0.05-0.15:
-  the anchorage slips by small steps and the c = 0 cover creeps; docs/limitations.md).
-  What is checked is that the span has settled: over the last quarter of the finest run the chord
-  sag and the mid-span strain move by less than 1 % (measured 0.3 % and 0.2 %), the ratio is
-  below 0.3, the sheet's free ends have not pulled out (< 1 mm; measured 0.11 mm) and the sheet
-  shares no node with the trench floor: the floor's particles reach the node row half a cell above
-  it and the sheet's thin block only the nodes of the cell it is in, so a gap of more than 1.5
-  cells keeps them apart (measured 0.42-0.44 m, 1.7 cells at h = 0.25 m; no pressure on the
-  sheet's lower face at mid-span).
+- Relaxation: every run reaches -tol 1e-3 (asserted: a run that does not fails the test, exit
+  code 3). Run on to 40,000 steps at h = 0.125 m (ratio 5.3e-4) the sag, the mid-span strain and
+  the peak move by 0.1 %, 0.01 % and 0.02 %: the answers have settled at 1e-3. Until 2026-12-05
+  the example asked for 1e-4 and stopped at an 8,000-step budget with the answers as settled
+  as now (1e-4 needs over 60,000 steps: the anchorage beside the edges still slips by small
+  steps). Also checked: over the last quarter of the finest run the chord sag and the mid-span
+  strain move by less than 1 % (measured 6e-5 and 5e-6), the sheet's free ends have not pulled
+  out (< 1 mm; measured 0.11 mm) and the sheet shares no node with the trench floor: the floor's
+  particles reach the node row half a cell above it and the sheet's thin block only the nodes of
+  the cell it is in, so a gap of more than 1.5 cells keeps them apart (measured 0.45 m, 1.8
+  cells at h = 0.25 m; no pressure on the sheet's lower face at mid-span).
 - Giroud (circular arc, strain only over the void): with the simulated pressure it overestimates
-  the mid-span strain (4.79 % against 4.52 %) and underestimates the sag (0.270 against 0.289 m):
-  the anchorage feeds 36 mm of sheet into the span. Asserted: the sign of both differences.
+  the mid-span strain (4.76 % against 4.53 %) and underestimates the sag (0.269 against 0.285 m):
+  the anchorage feeds 31 mm of sheet into the span. Asserted: the sign of both differences.
   Adding the simulated pull-in to Giroud's arc (arc = (B + u_L + u_R)(1 + T / J)) recovers the
-  strain over the void within 8 % and the sag within 10 % (measured 6.5 %, 4.7 % and 4.9 %, 5.8 %
-  since the contact's tail-share fix of 2026-12-03, below; before it 2.4 %, 0.8 % and 4.9 %,
-  6.4 %, chord 1.2-3.8 % and 1.0-6.3 %): the
-  remaining sag difference is the sheet's shape, which is not a circle (the cover presses harder
-  near the edges than at mid-span: 10-11 kPa over the central 0.4 m, 16-19 kPa near the edges).
+  strain over the void within 8 % and the sag within 10 % (measured 6.5 %, 4.7 % and 4.9 %,
+  5.8 %): the remaining sag difference is the sheet's shape, which is not a circle (the cover
+  presses harder near the edges than at mid-span).
 - Pressure: the arc pressure T_mid / R on the two finer meshes lies inside Terzaghi's bracket
   (K = 1: 14.1 kPa, K = Ka: 17.3 kPa), with 2 % allowed below K = 1: the bracket assumes vertical
   slip planes and is an estimate, not a bound (docs/method.md, section 6.4). Measured 13.92 and
-  14.31 kPa since the tail-share fix (1.5 % below K = 1 at h = 0.125 m), 14.17 and 14.30 before
-  it, chord 14.3 and 14.5; at h = 0.25 m (13.1 kPa now, 14.16 before) printed, not asserted; well
-  below the overburden of 19 kPa.
-- The contact's tail-share fix (src/contact/chain.cpp, contact_bodies; docs/benchmarks/relaxation_steps.md)
-  lets these runs settle much further within the same step budgets: unbalanced-force ratio 1e-4,
-  1.4e-3 and 1.2e-2 at h = 0.25, 0.125 and 0.0625 m, against 0.05-0.15 before. Their answers now
-  (2 ranks): chord sag 0.2760 / 0.2797 / 0.2846 m, mid-span strain 4.25 / 4.47 / 4.53 %, mean over
-  the void 4.76 / 4.59 / 4.54 %, peak in the span 4.70 / 4.65 / 4.62 %, mid-span tension 25.5 /
-  26.8 / 27.2 kN/m, pull-in 14 / 26 / 31 mm; the table above is from before it.
+  14.31 kPa (1.5 % below K = 1 at h = 0.125 m); at h = 0.25 m (13.1 kPa) printed, not asserted;
+  well below the overburden of 19 kPa.
 - Convergence: the change of the peak strain in the span between successive meshes shrinks
-  (-0.20 then -0.13 points; chord -0.77 then -0.18) and the two finest agree within 5 % (measured
-  2.7 %; chord 3.2 %); the chord sag and the mid-span strain agree within 2 % (1.8 % and 0.6 %;
-  with the chord strain 1.0 % and 0.1 %: the sag at h = 0.0625 m, its ratio 0.14 at the step
-  budget, is the least settled). A caveat from the bench-scale runs
-  (twice the steps; h = 0.03125 m, 64 cells across, 64,000 steps, 16 min): the span moves on a
-  little (mid-span strain 4.54 -> 4.74 %, tension 27.3 -> 28.4 kN/m, chord sag 0.291 -> 0.295 m,
-  arc pressure 14.6 -> 15.4 kPa) and the peak, now at the edge itself, falls to 4.8 % (5.8 % at
-  h = 0.0625 m after 32,000 steps): the peak sits where the sheet bends over the trench's 90-degree
-  edge, and with the sheet on a grid line instead of at mid-cell it is 7.6 % at h = 0.0625 m (the
-  span within 2 %). The span's values are the converged answer; the corner peak is not.
-- Ranks: the coarse run on 1 rank and on NP ranks agree to 1e-3 (measured 3.1e-4; chord 1.9e-5). Not to
-  round-off: the ghost sums differ in order (stress 2e-16 apart after step 1), and the stick-slip
-  of the anchorage and the yielding cover amplify that (1e-13 in the positions at step 100, 2e-6
-  at step 1,000, saturating), as any path-dependent frictional state would.
+  (-0.044 then -0.036 points) and the two finest agree within 5 % (measured 0.8 %); the chord sag
+  and the mid-span strain agree within 2 % (1.7 % and 1.4 %). The peak sits within a cell of the
+  trench's square edge, where the tension rises by the capstan factor of friction on both faces
+  over the edge (docs/benchmarks/membrane_smoothness.md): it converges here, but it is read where
+  the sheet turns through 35 degrees within a cell.
+- Ranks: the coarse run on 1 rank and on NP ranks agree to 1e-4 (measured 5.8e-6 since the runs
+  reach -tol; 3e-4 when they stopped at a step budget). Not to round-off: the ghost sums differ in
+  order (stress 2e-16 apart after step 1), and the stick-slip of the anchorage and the yielding
+  cover amplify that (1e-13 in the positions at step 100, 2e-6 at step 1,000), as any
+  path-dependent frictional state would.
 """
 import os
 import sys
@@ -82,13 +67,13 @@ from pmpmtest import Checks, run, summary
 exe, np_, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 c = Checks(f"trench_np{np_}")
 OPTS = ["-options_file", "options/trench.opts", "-trench_history_every", "200"]
-LEVELS = [(0.25, 800, 4000), (0.125, 1600, 8000), (0.0625, 3200, 16000)]
+LEVELS = [(0.25, 800, 40000), (0.125, 1600, 40000), (0.0625, 3200, 40000)]
 
 res = []
 for h, ramp, steps in LEVELS:
     d = os.path.join(out, f"h{h}")
     run(exe, np_, OPTS + ["-cell_size", str(h), "-ramp_steps", str(ramp), "-max_steps",
-                          str(steps)], d, capped=True)
+                          str(steps)], d)
     s = summary(d)
     r = s["results"]
     r["_ratio"], r["_steps"], r["_h"], r["_dir"] = s["unbalanced_force_ratio"], s["steps"], h, d
@@ -110,7 +95,7 @@ for r in res:
     c.le(f"h = {h}: the sheet's free ends stay put (pull-out < 1 mm)", max(ends), 1e-3)
     c.ge(f"h = {h}: the sheet shares no node with the trench floor (gap > 1.5 cells)",
          r["gap_to_floor"], 1.5 * h)
-    c.le(f"h = {h}: unbalanced-force ratio at the step budget", r["_ratio"], 0.3)
+    c.le(f"h = {h}: reached -tol (unbalanced-force ratio)", r["_ratio"], 1e-3)
 fine = res[-1]
 hist = np.genfromtxt(os.path.join(fine["_dir"], "trench_history.csv"), delimiter=",",
                      names=True)
@@ -154,10 +139,10 @@ if np_ > 1:
     h, ramp, steps = LEVELS[0]
     d = os.path.join(out, "h0.25_np1")
     run(exe, 1, OPTS + ["-cell_size", str(h), "-ramp_steps", str(ramp), "-max_steps",
-                        str(steps)], d, capped=True)
+                        str(steps)], d)
     r1 = summary(d)["results"]
     worst = max(abs(r1[k] - res[0][k]) / abs(res[0][k])
                 for k in ("sag", "strain_mid", "peak_strain_span", "tension_edge", "pressure_arc"))
     c.le(f"1 and {np_} ranks agree (largest relative difference of the coarse run's results)",
-         worst, 1e-3)
+         worst, 1e-4)
 c.done()
