@@ -26,8 +26,8 @@ only load and, with -cover_geostatic 0, displacements are measured from the star
    stage is recorded as kind "load" and converged; the sheet's strain stays zero (< 1e-5: the
    column compresses uniformly). The geostatic default on the same scene reports zero settlement
    (displacements from the geostatic state) - the option changes what is measured, not the state.
-4. Axisymmetric (-geometry axisymmetric, x the radius; without the sheet: chains are plane strain
-   only): the zone 0..4 m is a disc over the whole model, the column is in uniaxial strain again
+4. Axisymmetric (-geometry axisymmetric, x the radius; without the sheet, whose pressures there
+   test_membrane_axisymmetric.py checks): the zone 0..4 m is a disc over the whole model, the column is in uniaxial strain again
    (u_r = 0 on the axis and the outer roller, so the hoop strain vanishes) and the same closed
    form (without the sheet's weight) holds within the same 1 % at the same three rows.
 """

@@ -49,6 +49,12 @@ void point_stencil(const Chain &c, int i, const GridView &G, double tau[DIM], do
   weights<UGIMPShape>(x, lp, G.origin, G.h, W);
 }
 
+// Segment k's weight in the strain projection: its rest length (times its rest radius under
+// -geometry axisymmetric, so that the projection stays symmetric in the energy's weights).
+double seg_weight(const Chain &c, int k) {
+  return c.axisymmetric ? c.l0[k] * c.r0[k] : c.l0[k];
+}
+
 bool pinned(const Chain &c, int i) {
   return (i == 0 && c.pin[0]) || (i == c.n - 1 && c.pin[1]);
 }
@@ -203,6 +209,10 @@ PetscErrorCode PlaceChainPoints(MPI_Comm comm, const ChainSpec &spec, double ds,
     c.length[k] += 0.5 * c.l0[k];
     c.length[k + 1] += 0.5 * c.l0[k];
   }
+  c.r0.assign(c.n - 1, 0.0);
+  for (int k = 0; k + 1 < c.n; ++k) c.r0[k] = 0.5 * (c.x[k * DIM] + c.x[(k + 1) * DIM]);
+  c.eps_hoop.assign(c.n - 1, 0.0);
+  c.T_hoop.assign(c.n - 1, 0.0);
   c.eps.assign(c.n - 1, 0.0);
   c.eps_p.assign(c.n - 1, 0.0);
   c.alpha.assign(c.n - 1, 0.0);
@@ -278,7 +288,7 @@ void chain_projection(const Chain &c, const double *x, ChainProjection &P) {
       if (it->second == static_cast<int>(P.mass.size())) P.mass.push_back(0.0);
       P.node.push_back(it->second);
       P.w.push_back(w);
-      P.mass[it->second] += w * c.l0[k];
+      P.mass[it->second] += w * seg_weight(c, k);
     }
     P.start.push_back(static_cast<int>(P.w.size()));
   }
@@ -288,7 +298,8 @@ void chain_project(const Chain &c, const ChainProjection &P, const double *e, do
   const int ns = c.n - 1;
   std::vector<double> eI(P.mass.size(), 0.0);
   for (int k = 0; k < ns; ++k)
-    for (int q = P.start[k]; q < P.start[k + 1]; ++q) eI[P.node[q]] += P.w[q] * c.l0[k] * e[k];
+    for (int q = P.start[k]; q < P.start[k + 1]; ++q)
+      eI[P.node[q]] += P.w[q] * seg_weight(c, k) * e[k];
   for (size_t I = 0; I < eI.size(); ++I) eI[I] /= P.mass[I];
   for (int k = 0; k < ns; ++k) {
     double ek = 0;
@@ -296,6 +307,57 @@ void chain_project(const Chain &c, const ChainProjection &P, const double *e, do
     out[k] = ek;
   }
 }
+
+namespace {
+// -geometry axisymmetric: meridional and hoop tensions from the (projected) meridional strains,
+// the hoop strains th and their projection thp (the energy's nu coupling, chain.hpp), and the
+// forces per radian. tension_only: the tension field of a wrinkled sheet (a compressive principal
+// tension is zero, the other carries E t times its strain), slack when both are.
+void chain_update_tension_axi(Chain &c) {
+  const int ns = c.n - 1;
+  std::vector<double> th(ns), thp(ns);
+  for (int k = 0; k < ns; ++k) {
+    th[k] = 0.5 * (c.x[k * DIM] + c.x[(k + 1) * DIM]) / c.r0[k] - 1.0;
+    thp[k] = th[k];
+  }
+  if (c.strain_projection) {
+    ChainProjection P;
+    chain_projection(c, c.x.data(), P);
+    chain_project(c, P, c.eps.data(), c.eps.data());
+    chain_project(c, P, th.data(), thp.data());
+  }
+  const double J = c.law.J, nu = c.nu, Et = J * (1 - nu * nu);
+  const bool field = c.law.kind == MembraneLawId<TensionOnlyMembrane>;
+  for (int k = 0; k < ns; ++k) {
+    double N = J * (c.eps[k] + nu * thp[k]), Nh = J * (th[k] + nu * c.eps[k]);
+    bool slack = false;
+    if (field && (N < 0 || Nh < 0)) {
+      // not taut: slack if neither principal strain stretches, else wrinkled, the more stretched
+      // direction carrying E t times its strain
+      const double e = c.eps[k], t = th[k];
+      N = Nh = 0;
+      slack = e <= 0 && t <= 0;
+      if (!slack && e >= t) N = Et * e;
+      if (!slack && e < t) Nh = Et * t;
+    }
+    c.T[k] = N;
+    c.T_hoop[k] = Nh;
+    c.eps_hoop[k] = th[k];
+    c.slack[k] = slack;
+  }
+  std::fill(c.f.begin(), c.f.end(), 0.0);
+  for (int k = 0; k < ns; ++k) {
+    const double dx = c.x[(k + 1) * DIM] - c.x[k * DIM],
+                 dy = c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1];
+    const double l = std::hypot(dx, dy), RN = c.r0[k] * c.T[k];
+    const double fh = 0.5 * c.l0[k] * c.T_hoop[k]; // the hoop tension pulls toward the axis
+    c.f[k * DIM] += RN * dx / l - fh;
+    c.f[k * DIM + 1] += RN * dy / l;
+    c.f[(k + 1) * DIM] -= RN * dx / l + fh;
+    c.f[(k + 1) * DIM + 1] -= RN * dy / l;
+  }
+}
+} // namespace
 
 void chain_update_tension(Chain &c) {
   c.eps_chord.resize(c.n - 1);
@@ -305,25 +367,29 @@ void chain_update_tension(Chain &c) {
     c.eps_chord[k] = std::hypot(dx, dy) / c.l0[k] - 1.0;
   }
   c.eps = c.eps_chord;
-  if (c.strain_projection) {
-    ChainProjection P;
-    chain_projection(c, c.x.data(), P);
-    chain_project(c, P, c.eps.data(), c.eps.data());
-  }
-  for (int k = 0; k + 1 < c.n; ++k) {
-    bool slack = false;
-    c.T[k] = c.law.tension(c.eps[k], c.eps_p[k], c.alpha[k], slack);
-    c.slack[k] = slack;
-  }
-  std::fill(c.f.begin(), c.f.end(), 0.0);
-  for (int k = 0; k + 1 < c.n; ++k) {
-    const double dx = c.x[(k + 1) * DIM] - c.x[k * DIM],
-                 dy = c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1];
-    const double l = std::hypot(dx, dy), fx = c.T[k] * dx / l, fy = c.T[k] * dy / l;
-    c.f[k * DIM] += fx; // the segment pulls its ends toward each other under tension
-    c.f[k * DIM + 1] += fy;
-    c.f[(k + 1) * DIM] -= fx;
-    c.f[(k + 1) * DIM + 1] -= fy;
+  if (c.axisymmetric) {
+    chain_update_tension_axi(c);
+  } else {
+    if (c.strain_projection) {
+      ChainProjection P;
+      chain_projection(c, c.x.data(), P);
+      chain_project(c, P, c.eps.data(), c.eps.data());
+    }
+    for (int k = 0; k + 1 < c.n; ++k) {
+      bool slack = false;
+      c.T[k] = c.law.tension(c.eps[k], c.eps_p[k], c.alpha[k], slack);
+      c.slack[k] = slack;
+    }
+    std::fill(c.f.begin(), c.f.end(), 0.0);
+    for (int k = 0; k + 1 < c.n; ++k) {
+      const double dx = c.x[(k + 1) * DIM] - c.x[k * DIM],
+                   dy = c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1];
+      const double l = std::hypot(dx, dy), fx = c.T[k] * dx / l, fy = c.T[k] * dy / l;
+      c.f[k * DIM] += fx; // the segment pulls its ends toward each other under tension
+      c.f[k * DIM + 1] += fy;
+      c.f[(k + 1) * DIM] -= fx;
+      c.f[(k + 1) * DIM + 1] -= fy;
+    }
   }
   // what the supports hold: minus the sheet's pull on the pinned points
   for (int e = 0; e < 2; ++e) {
@@ -336,6 +402,7 @@ void chain_lay(Chain &c) {
   for (int k = 0; k + 1 < c.n; ++k)
     c.l0[k] =
         std::hypot(c.x[(k + 1) * DIM] - c.x[k * DIM], c.x[(k + 1) * DIM + 1] - c.x[k * DIM + 1]);
+  for (int k = 0; k + 1 < c.n; ++k) c.r0[k] = 0.5 * (c.x[k * DIM] + c.x[(k + 1) * DIM]);
   std::fill(c.eps_p.begin(), c.eps_p.end(), 0.0);
   std::fill(c.alpha.begin(), c.alpha.end(), 0.0);
   std::fill(c.slip_top.begin(), c.slip_top.end(), 0.0);
@@ -370,9 +437,10 @@ static void chain_face_area_ends(const Chain &c, const GridView &G, const Grid &
       double lp[DIM];
       point_halfsize(G, xv, tau, lp);
       weights<UGIMPShape>(xv, lp, G.origin, G.h, W);
+      const double area = c.axisymmetric ? len * xv[0] : len; // per radian: times the radius
       for (int q = 0; q < NS * NS; ++q)
         if (W.w[q] != 0.0)
-          G.node(W.base[0] + q % NS, W.base[1] + q / NS)[c.slot + ChainDof::AREA] += W.w[q] * len;
+          G.node(W.base[0] + q % NS, W.base[1] + q / NS)[c.slot + ChainDof::AREA] += W.w[q] * area;
     }
   }
 }
@@ -386,10 +454,14 @@ void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &
     if (pinned(c, i) || !owned_by(grid, G, x)) continue;
     double tau[DIM], nrm[DIM];
     point_stencil(c, i, G, tau, nrm, W);
-    const double m = c.line_mass * c.length[i], wt = load.factor * c.line_weight * c.length[i];
+    // per radian under -geometry axisymmetric: mass and loads times the initial radius, the face
+    // times the current one (chain.hpp)
+    const double ring = c.ring(i), area = c.axisymmetric ? c.length[i] * x[0] : c.length[i];
+    const double m = c.line_mass * c.length[i] * ring,
+                 wt = load.factor * c.line_weight * c.length[i] * ring;
     double fext[DIM] = {wt * load.gdir[0], wt * load.gdir[1]};
     if (i == c.n - 1)
-      for (int d = 0; d < DIM; ++d) fext[d] += load.factor * c.end_force[d];
+      for (int d = 0; d < DIM; ++d) fext[d] += load.factor * ring * c.end_force[d];
     for (int b = 0; b < NS; ++b)
       for (int a = 0; a < NS; ++a) {
         const double w = W.w[b * NS + a];
@@ -404,8 +476,8 @@ void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &
         }
         ns[ChainDof::NX] += w * m * nrm[0];
         ns[ChainDof::NY] += w * m * nrm[1];
-        ns[ChainDof::LEN] += w * c.length[i];
-        ns[ChainDof::AREA] += w * c.length[i];
+        ns[ChainDof::LEN] += w * area;
+        ns[ChainDof::AREA] += w * area;
       }
   }
   chain_face_area_ends(c, G, grid);
@@ -472,12 +544,13 @@ void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &p
         // the point's share of the node's normal impulse: w l_i / AREA of it (AREA >= w l_i > 0),
         // tension included (a bonded face's rows of nodes carry impulses of both signs that add
         // up to its load: keeping only the compressive ones tripled a bonded sheet's pressure)
-        const double share = w / ns[ChainDof::AREA];
+        const double share = ns[ChainDof::AREA] > 0 ? w / ns[ChainDof::AREA] : 0.0;
         nt += share * ns[ChainDof::NTOP];
         nbt += share * ns[ChainDof::NBOT];
       }
 
     for (int d = 0; d < DIM; ++d) v[d] = (1.0 - pic) * (v[d] + dt * ag[d]) + pic * vg[d];
+    if (c.axisymmetric && x[0] == 0.0) v[0] = vg[0] = 0.0; // a point on the axis stays there
     if (ma > 0) c.slip_top[i] += dt * (va[0] * tau[0] + va[1] * tau[1]) / ma;
     if (mb > 0) c.slip_bot[i] += dt * (vb[0] * tau[0] + vb[1] * tau[1]) / mb;
     // contact pressure (negative: tension): the point's shares of its nodes' normal impulses over
@@ -554,6 +627,7 @@ void chain_friction_capacity(const GridView &L, const GridView &G,
       // of sums overstates a sheet between two rows of nodes by 13-17 %, but with the projected
       // strain it let the pulled-out sheet go unstable at -cfl 0.5; docs/limitations.md.)
       double n[2] = {0, 0}, len = 0, wc[2] = {0, 0};
+      const double area = c.axisymmetric ? c.length[i] * c.x[i * DIM] : c.length[i];
       for (int q = 0; q < NS * NS; ++q) {
         if (W.w[q] == 0.0) continue;
         const double *ns = L.node(W.base[0] + q % NS, W.base[1] + q / NS) + c.slot;
@@ -575,14 +649,18 @@ void chain_friction_capacity(const GridView &L, const GridView &G,
         double *out = G.node(a, b) + c.slot;
         for (int f = 0; f < 2; ++f)
           if (len > 0 && ns[f == 0 ? ChainDof::NTOP : ChainDof::NBOT] > 0)
-            out[f == 0 ? ChainDof::PTOP : ChainDof::PBOT] +=
-                W.w[q] / wc[f] * c.length[i] * n[f] / len;
+            out[f == 0 ? ChainDof::PTOP : ChainDof::PBOT] += W.w[q] / wc[f] * area * n[f] / len;
       }
     }
 }
 
 double chain_elastic_energy(const Chain &c) {
   double u = 0;
+  if (c.axisymmetric) { // per radian: l0 R (N eps + N_th th) / 2
+    for (int k = 0; k + 1 < c.n; ++k)
+      u += 0.5 * c.l0[k] * c.r0[k] * (c.T[k] * c.eps[k] + c.T_hoop[k] * c.eps_hoop[k]);
+    return u;
+  }
   for (int k = 0; k + 1 < c.n; ++k) u += 0.5 * c.T[k] * c.T[k] * c.l0[k] / c.law.J;
   return u;
 }

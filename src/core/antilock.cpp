@@ -36,7 +36,7 @@ template <int D> double step_ratio(const double *du) {
 
 template <int D>
 double fbar_apply(const ParticleView &P, const std::vector<int> &group, std::vector<double> &sums,
-                  double *dudx) {
+                  double *dudx, const double *hoop) {
   constexpr int DD = D * D;
   int ng = 0;
   for (PetscInt p = 0; p < P.n; ++p) ng = std::max(ng, group[p] + 1);
@@ -44,14 +44,17 @@ double fbar_apply(const ParticleView &P, const std::vector<int> &group, std::vec
   // dJ_p = det(I + L dt): the step's volume ratio; vol (already updated) / dJ_p is the old one
   for (PetscInt p = 0; p < P.n; ++p) {
     if (group[p] < 0) continue;
+    const double dJ =
+        hoop ? step_ratio<D>(dudx + p * DD) * (1.0 + hoop[2 * p]) : step_ratio<D>(dudx + p * DD);
     sums[2 * group[p]] += P.vol[p];
-    sums[2 * group[p] + 1] += P.vol[p] / step_ratio<D>(dudx + p * DD);
+    sums[2 * group[p] + 1] += P.vol[p] / dJ;
   }
   double change = 0;
   for (PetscInt p = 0; p < P.n; ++p) {
     if (group[p] < 0) continue;
     double *du = dudx + p * DD, *F = P.F + p * DD;
-    const double dJ = step_ratio<D>(du), dJbar = sums[2 * group[p]] / sums[2 * group[p] + 1];
+    const double dJ = hoop ? step_ratio<D>(du) * (1.0 + hoop[2 * p]) : step_ratio<D>(du),
+                 dJbar = sums[2 * group[p]] / sums[2 * group[p] + 1];
     const double r = dJbar / dJ, s = D == 2 ? std::sqrt(r) : std::cbrt(r);
     change = std::max(change, std::fabs(r - 1.0));
     // I + du_bar = s (I + du)
@@ -88,7 +91,7 @@ void fbar_pressure_shift(const ParticleView &P, const std::vector<int> &group,
   template void fbar_groups<D>(const ParticleView &, const double[D], double, const PetscInt[D],   \
                                const PetscInt[D], int, std::vector<int> &);                        \
   template double fbar_apply<D>(const ParticleView &, const std::vector<int> &,                    \
-                                std::vector<double> &, double *);                                  \
+                                std::vector<double> &, double *, const double *);                  \
   template void fbar_pressure_shift<D>(const ParticleView &, const std::vector<int> &,             \
                                        std::vector<double> &, std::vector<double> &);
 PMPM_FBAR(2)

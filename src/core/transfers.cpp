@@ -161,9 +161,13 @@ template <class Shape, int D>
 void p2g(const ParticleView &P, const LoadT<D> &load, const GridViewT<D> &G, const PetscInt *idx,
          PetscInt nidx, const double *pshift) {
   const bool multi = G.nbody > 1, affine = P.B != nullptr;
-  // axisymmetric runs have one body (GeometryCheck refuses chains); 2D only
+  // axisymmetric: 2D only; several bodies with membrane chains
   if constexpr (D == 2) {
-    if (G.axisymmetric && affine)
+    if (G.axisymmetric && multi && affine)
+      return p2g_impl<Shape, D, true, true, true>(P, load, G, idx, nidx, pshift);
+    else if (G.axisymmetric && multi)
+      return p2g_impl<Shape, D, true, false, true>(P, load, G, idx, nidx, pshift);
+    else if (G.axisymmetric && affine)
       return p2g_impl<Shape, D, false, true, true>(P, load, G, idx, nidx, pshift);
     else if (G.axisymmetric)
       return p2g_impl<Shape, D, false, false, true>(P, load, G, idx, nidx, pshift);
@@ -585,9 +589,15 @@ void g2p_impl(const ParticleView &P, const GridViewT<D> &G0, const GridViewT<D> 
               const CellRangeT<D> *owned, const G2PParamsT<D> &prm, const double *wave_modulus,
               double *dudx, G2PStatsT<D> *st) {
   const bool multi = G0.nbody > 1, affine = P.B != nullptr;
-  // axisymmetric runs have one body (GeometryCheck refuses chains); 2D only
+  // axisymmetric: 2D only; several bodies with membrane chains
   if constexpr (D == 2) {
-    if (G0.axisymmetric && affine)
+    if (G0.axisymmetric && multi && affine)
+      return g2p_one<Shape, D, mode, true, true, true>(P, G0, G1, owned, prm, wave_modulus, dudx,
+                                                       st);
+    else if (G0.axisymmetric && multi)
+      return g2p_one<Shape, D, mode, true, false, true>(P, G0, G1, owned, prm, wave_modulus, dudx,
+                                                        st);
+    else if (G0.axisymmetric && affine)
       return g2p_one<Shape, D, mode, false, true, true>(P, G0, G1, owned, prm, wave_modulus, dudx,
                                                         st);
     else if (G0.axisymmetric)

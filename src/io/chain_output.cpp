@@ -42,8 +42,11 @@ PetscErrorCode OutputChains(Simulation &sim) {
       const std::string path = dir + "/chain_" + c.name + ".csv";
       FILE *f = std::fopen((path + ".tmp").c_str(), "w");
       PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
-      std::fprintf(f, "s0,x0,y0,x,y,ux,uy,strain,tension,slack,slip_top,slip_bottom,"
-                      "pressure_top,pressure_bottom\n");
+      // under -geometry axisymmetric also the hoop strain and tension (chain.hpp)
+      std::fprintf(f,
+                   "s0,x0,y0,x,y,ux,uy,strain,tension,slack,slip_top,slip_bottom,"
+                   "pressure_top,pressure_bottom%s\n",
+                   c.axisymmetric ? ",strain_hoop,tension_hoop" : "");
       double s0 = 0;
       for (int i = 0; i < c.n; ++i) {
         if (i > 0) s0 += c.l0[i - 1];
@@ -52,9 +55,15 @@ PetscErrorCode OutputChains(Simulation &sim) {
         point_segment_values(c, i, eps, T, slack);
         const double *x = &c.x[i * DIM], *x0 = &c.x0[i * DIM];
         std::fprintf(
-            f, "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%d,%.15g,%.15g,%.15g,%.15g\n",
+            f, "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%d,%.15g,%.15g,%.15g,%.15g",
             s0, x0[0], x0[1], x[0], x[1], x[0] - x0[0], x[1] - x0[1], eps, T, slack ? 1 : 0,
             c.slip_top[i], c.slip_bot[i], c.p_top[i], c.p_bot[i]);
+        if (c.axisymmetric) {
+          const int a = std::max(i - 1, 0), b = std::min(i, c.n - 2);
+          std::fprintf(f, ",%.15g,%.15g", 0.5 * (c.eps_hoop[a] + c.eps_hoop[b]),
+                       0.5 * (c.T_hoop[a] + c.T_hoop[b]));
+        }
+        std::fprintf(f, "\n");
       }
       std::fclose(f);
       PetscCheck(std::rename((path + ".tmp").c_str(), path.c_str()) == 0, PETSC_COMM_SELF,

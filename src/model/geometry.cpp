@@ -9,17 +9,11 @@ namespace pmpm {
 PetscErrorCode GeometryCheck(Simulation &sim) {
   PetscFunctionBeginUser;
   if (sim.set.geometry != Geometry::Axisymmetric) PetscFunctionReturn(0);
-  // Newton's tangent, the chains' contact and F-bar's cell averages have no hoop terms
+  // Newton's tangent has no hoop terms (chains and F-bar do: chain.hpp, antilock.hpp)
   PmpmCheckInput(sim.solver->supports(SolverFeature::Axisymmetric), sim.comm, PETSC_ERR_SUP,
                  "-solver %s is not supported with -geometry axisymmetric (use -solver "
                  "relaxation)",
                  sim.set.solver.c_str());
-  PmpmCheckInput(sim.model.chain_specs.empty(), sim.comm, PETSC_ERR_SUP,
-                 "-geometry axisymmetric does not support membrane chains (scene %s has %d; use "
-                 "-geometry plane_strain)",
-                 sim.set.scene.c_str(), static_cast<int>(sim.model.chain_specs.size()));
-  PmpmCheckInput(!sim.set.fbar, sim.comm, PETSC_ERR_SUP,
-                 "-fbar is not supported with -geometry axisymmetric (use -fbar 0)");
   PmpmCheckInput(sim.model.origin[0] >= 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                  "-geometry axisymmetric needs the grid at r = x >= 0: scene %s's box starts at "
                  "x = %g m (use -geometry plane_strain)",

@@ -179,8 +179,8 @@ PetscErrorCode SolverOptions(PetscOptionItems *PetscOptionsObject, Settings &s) 
   s.solver = Solvers()[(size_t)solver].name;
   PetscCall(PmpmOptionsEnum("-geometry",
                             "2D geometry: plane_strain, or axisymmetric (x the radius r >= 0, y "
-                            "the axis; quantities per radian; relaxation only, no chains, no "
-                            "-fbar)",
+                            "the axis; quantities per radian; relaxation only; chains are sheets "
+                            "of revolution)",
                             nullptr, GeometryNames, (PetscEnum)s.geometry, (PetscEnum *)&s.geometry,
                             nullptr));
   PetscCall(PmpmOptionsInt("-dim",
@@ -657,6 +657,14 @@ PetscErrorCode ChainsFromOptions(Simulation &sim, PetscBool help, PetscBool type
     // inertia: the sheet's axial wave no faster than the continuum's (its load is unchanged)
     if (chain_scaling && cmax > 0) c.line_mass = c.law.J / (cmax * cmax);
     c.strain_projection = strain_projection;
+    c.axisymmetric = sim.set.geometry == Geometry::Axisymmetric;
+    PmpmCheckInput(
+        !c.axisymmetric || (!c.law.plastic() && c.stiffness == StiffnessKind::PlaneStrain),
+        sim.comm, PETSC_ERR_SUP,
+        "-geometry axisymmetric: chain %s needs -mat_%s_law linear or tension_only "
+        "(got %s) and -mat_%s_axial_stiffness plane_strain (the sheet's biaxial "
+        "plane-stress law; chain.hpp)",
+        c.name.c_str(), c.material.c_str(), MembraneLawNames[c.law.kind], c.material.c_str());
     c.grid_h = sim.set.h;
     for (int d = 0; d < DIM; ++d) {
       c.grid_origin[d] = sim.model.origin[d];

@@ -8,6 +8,11 @@
 // -catenary_second adds a second, independent chain ("liner", material -mat_liner_*) hanging
 // -catenary_second_drop below the first: several named chains per scene, each with its own
 // material, checked against its own closed form.
+// Under -geometry axisymmetric (x the radius) the chain is a circular membrane of radius
+// -catenary_span, clamped at its rim and sagging under its own weight: the chain's point on the
+// axis stays there, its rim is pinned. It reports the sag and the strains at the centre and the
+// rim; its reference is the membrane of revolution solved as a boundary-value problem
+// (tests/test_membrane_axisymmetric.py), not the catenary.
 #include "pmpm/util/options.hpp"
 #include "pmpm/io/output.hpp"
 #include "pmpm/scenes/scene_util.hpp"
@@ -41,6 +46,7 @@ class CatenaryScene final : public Scene {
   double span_ = 10, t_ = 0.0015, off_[DIM] = {0, 0};
   CatenaryExact ex_{}, ex2_{};
   double y0_ = 0, y2_ = 0, drop_ = 0;
+  bool axi_ = false; // -geometry axisymmetric: a circular membrane
   PetscBool second_ = PETSC_FALSE;
 
 public:
@@ -49,8 +55,10 @@ public:
     PetscBool drop_set = PETSC_FALSE;
     PetscFunctionBeginUser;
     PetscOptionsBegin(sim.comm, "catenary_", "Catenary: one chain pinned at both ends", nullptr);
-    PetscCall(PmpmOptionsReal("-span", "Span l between the supports (m), > 0", nullptr, span_,
-                              &span_, nullptr));
+    PetscCall(PmpmOptionsReal("-span",
+                              "Span l between the supports (m), > 0 (-geometry axisymmetric: the "
+                              "circular membrane's radius)",
+                              nullptr, span_, &span_, nullptr));
     PetscCall(PmpmOptionsRealArray("-offset",
                                    "Shift of the chain against the grid, dx,dy (m; a fraction "
                                    "of a cell tests grid independence)",
@@ -71,6 +79,10 @@ public:
     PmpmCheckInput(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-membrane_thickness must be > 0 (got %g)", t_);
     const double h = sim.set.h;
+    axi_ = sim.set.geometry == Geometry::Axisymmetric;
+    PmpmCheckInput(!axi_ || (!second_ && off_[0] == 0), sim.comm, PETSC_ERR_ARG_INCOMP,
+                   "-geometry axisymmetric: the catenary is one circular membrane centred on the "
+                   "axis (no -catenary_second, no x in -catenary_offset)");
     ChainSpec cs;
     cs.name = "membrane";
     cs.material = "membrane";
@@ -104,9 +116,14 @@ public:
       if (drop_ <= 0) drop_ = 1.2 * ex_.sag + 2 * h; // below the first chain's sag
       depth = std::fmax(depth, drop_ + ex2_.sag);
     }
-    sim.model.ncell[0] = static_cast<PetscInt>(std::ceil(span_ / h - 1e-9)) + 4;
+    if (axi_) // Hencky's sag of a circular membrane, 0.662 a (q a / E t)^(1/3) at nu = 0.3
+      depth = std::fmax(depth, 0.7 * span_ *
+                                   std::cbrt(probe.line_weight * span_ /
+                                             (probe.law.J * (1 - probe.nu * probe.nu))));
+    sim.model.ncell[0] = static_cast<PetscInt>(std::ceil(span_ / h - 1e-9)) + (axi_ ? 2 : 4);
     sim.model.ncell[1] = static_cast<PetscInt>(std::ceil(1.2 * depth / h)) + 5;
-    sim.model.origin[0] = -2 * h;
+    sim.model.origin[0] = axi_ ? 0.0 : -2 * h; // axisymmetric: the axis is the grid's x = 0
+    if (axi_) cs.pin_start = false;
     sim.model.origin[1] = -(sim.model.ncell[1] - 3) * h;
     y0_ = 0.5 * h + off_[1];
     cs.line = {off_[0], y0_, off_[0] + span_, y0_};
@@ -130,6 +147,23 @@ public:
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     PetscFunctionBeginUser;
     const Chain &c = sim.chains.back(); // the membrane (the liner, if any, is below it)
+    if (axi_) {
+      // the centre (point 0, on the axis; its segment's strain, isotropic there) and the rim
+      // (the last two segments' strains extrapolated to the support, as below)
+      const int m = c.n - 2;
+      const char *sep = ",\n    ";
+      json = json_kv("radius", span_) + sep + json_kv("thickness", t_) + sep +
+             json_kv("weight_per_area", c.line_weight) + sep + json_kv("axial_stiffness", c.law.J) +
+             sep + json_kv("poisson", c.nu) + sep + json_kv("points", double(c.n)) + sep +
+             json_kv("sag", y0_ - c.x[1]) + sep + json_kv("strain_centre", c.eps[0]) + sep +
+             json_kv("strain_hoop_centre", c.eps_hoop[0]) + sep +
+             json_kv("strain_rim", 1.5 * c.eps[m] - 0.5 * c.eps[m - 1]) + sep +
+             json_kv("tension_rim", 1.5 * c.T[m] - 0.5 * c.T[m - 1]) + sep +
+             json_kv("tension_hoop_rim", 1.5 * c.T_hoop[m] - 0.5 * c.T_hoop[m - 1]) + sep +
+             json_kv("vertical_reaction", c.reaction[1][1]) + sep +
+             json_kv("weight", c.line_weight * 0.5 * span_ * span_);
+      PetscFunctionReturn(0);
+    }
     // mid-span: the point at s = L0 / 2 (the point count is odd for an even division) or the
     // mean of the two around it; strains: the segments there and at the supports
     const int im = (c.n - 1) / 2, jm = c.n / 2;

@@ -119,13 +119,17 @@ PetscErrorCode Reductions(StepState &S) {
   for (const Chain &ch : sim.chains) {
     c = std::fmax(c, ch.wave_speed());
     for (int i = 0; i < ch.n; ++i) {
-      const double *v = &ch.v[i * DIM], s2 = v[0] * v[0] + v[1] * v[1];
-      ke += 0.5 * ch.line_mass * ch.length[i] * s2;
+      // per radian under -geometry axisymmetric (Chain::ring), as the grid's
+      const double *v = &ch.v[i * DIM], s2 = v[0] * v[0] + v[1] * v[1], r = ch.ring(i);
+      ke += 0.5 * ch.line_mass * ch.length[i] * r * s2;
       v2 = std::fmax(v2, s2);
-      pw += ch.line_weight * ch.length[i] * (S.load.gdir[0] * v[0] + S.load.gdir[1] * v[1]);
+      pw += ch.line_weight * ch.length[i] * r * (S.load.gdir[0] * v[0] + S.load.gdir[1] * v[1]);
     }
     const double *v = &ch.v[(ch.n - 1) * DIM];
-    pw += ch.end_force[0] * v[0] + ch.end_force[1] * v[1];
+    if (ch.axisymmetric)
+      pw += ch.ring(ch.n - 1) * (ch.end_force[0] * v[0] + ch.end_force[1] * v[1]);
+    else
+      pw += ch.end_force[0] * v[0] + ch.end_force[1] * v[1];
   }
   rep.g2p.kinetic += ke;
   rep.g2p.max_c = std::fmax(rep.g2p.max_c, c);

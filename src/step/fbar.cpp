@@ -33,7 +33,8 @@ template <int D> PetscErrorCode Apply(StepStateT<D> &S) {
   Simulation &sim = S.sim;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.fbar);
-  fbar_apply<D>(S.P, sim.scratch.fbar_group, sim.scratch.fbar_sums, sim.scratch.dudx.data());
+  const double *hoop = sim.scratch.hoop.empty() ? nullptr : sim.scratch.hoop.data(); // axisym.
+  fbar_apply<D>(S.P, sim.scratch.fbar_group, sim.scratch.fbar_sums, sim.scratch.dudx.data(), hoop);
   PetscFunctionReturn(0);
 }
 } // namespace

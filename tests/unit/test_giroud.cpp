@@ -101,6 +101,20 @@ int main() {
     CHECK(threw);
   }
 
+  // A round void of diameter D: the pressure of a long void of width D / 2 (area over perimeter
+  // D / 4 for both) and a spherical cap, T = p D Omega(y, D) / 2 = E t eps(y, D) at the root.
+  {
+    const double D = 2.0, Hr = 1.2, gr = 19e3, tr = 1.5e-3, Er = 500e6;
+    const g::Result r = g::self_consistent_round(gr, D, Hr, 0.0, tr, Er);
+    CHECK_CLOSE(r.pressure / g::arching_pressure(gr, 0.5 * D, Hr, 0.0), 1.0, 1e-14);
+    CHECK_CLOSE(0.5 * r.pressure * D * g::omega(r.sag, D) / (Er * tr * g::strain(r.sag, D)), 1.0,
+                1e-9);
+    CHECK_CLOSE(r.tension, Er * tr * r.strain, 1e-9 * r.tension);
+    // half the long void's tension factor: the cap sags less than the cylinder at one pressure
+    const g::Result l = g::self_consistent(gr, D, Hr, 0.0, tr, Er);
+    CHECK(r.sag < l.sag * g::arching_pressure(gr, 0.5 * D, Hr, 0.0) / l.pressure);
+  }
+
   std::printf("load II paper form (y = 2 mm): p = %.4f MPa, Omega = %.4f, eps = %.2f %%, "
               "sigma = %.2f MPa\n",
               p / 1e6, g::omega(2e-3, b), 100 * pf.strain, pf.stress / 1e6);

@@ -19,6 +19,18 @@
 // interpenetration, separation where the faces pull apart (contact) or not (paper, bonded),
 // Coulomb friction per face.
 //
+// Under -geometry axisymmetric (x the radius r) a chain is a membrane of revolution, every
+// quantity per radian as the grid's: point i carries its mass, weight and end load times its
+// initial radius, and segment k, besides its meridional strain eps_k, a hoop strain
+// th_k = r_k / R_k - 1 (r_k its midpoint's radius, R_k the same when laid). From the energy per
+// radian sum_k l0_k R_k W(eps_k, th_k) of a plane-stress sheet, W = J/2 (eps^2 + 2 nu eps th +
+// th^2), J = E t / (1 - nu^2): meridional and hoop tensions N = J (eps + nu th), N_th = J (th +
+// nu eps) per unit length, and the forces
+//   f_i = R_i N_i tau_i - R_{i-1} N_{i-1} tau_{i-1} - (l0_{i-1} N_th,i-1 + l0_i N_th,i) / 2 e_r.
+// The tension_only law is a tension-field (wrinkling) model there: a compressive principal
+// tension is zero and the other direction carries the uniaxial E t strain. A point on the axis
+// keeps r = 0.
+//
 // Distribution: a chain has O(width / h) points against O(area / h^2) particles, so every rank
 // holds all its points. The rank owning a point's cell (DMSwarm's rule, Grid::owns_cell) maps it
 // to the grid and updates it; one allreduce per step (sum, other ranks contribute zeros) makes
@@ -97,6 +109,12 @@ struct Chain {
   PetscInt grid_ncell[DIM] = {0, 0};
   std::vector<double> eps_chord;
   std::vector<char> slack;
+  // -geometry axisymmetric (above): per segment the rest radius R_k of its midpoint, its hoop
+  // strain and hoop tension (N/m)
+  bool axisymmetric = false;
+  std::vector<double> r0, eps_hoop, T_hoop;
+  // point i's weight per radian: its initial radius (axisymmetric), else 1
+  double ring(int i) const { return axisymmetric ? x0[i * DIM] : 1.0; }
   // per point, accumulated from the grid: slip on each face (m), contact pressure (Pa)
   std::vector<double> slip_top, slip_bot, p_top, p_bot;
   std::vector<char> owned;   // this rank updates the point (scratch of g2p_chain)
@@ -141,6 +159,7 @@ struct Chain {
     PetscCall(f("p_bot", p_bot));
     PetscCall(f("slack", slack));
     PetscCall(f("reaction", reaction));
+    if (axisymmetric) PetscCall(f("r0", r0));
     PetscFunctionReturn(0);
   }
 };

@@ -46,9 +46,13 @@ void fbar_groups(const ParticleView &P, const double origin[D], double h, const 
 // Replace each particle's step increment dudx (L dt, D x D per particle) and its F and volume
 // by the F-bar ones of its group. sums: scratch of 2 per group. Returns the largest
 // |dJ_bar / dJ_p - 1| (how much the average changed a particle's volume step).
+// hoop (-geometry axisymmetric, 2D: the hoop increment and stretch, 2 per particle): a step's
+// volume ratio is then det(I + L dt) (1 + d_thth dt), and the in-plane increment and F take the
+// whole correction (exponent 1/2): the hoop stretch is r / r0, the particle's position, which
+// no average may change; the volumes are per radian, so the group's average is radius-weighted.
 template <int D>
 double fbar_apply(const ParticleView &P, const std::vector<int> &group, std::vector<double> &sums,
-                  double *dudx);
+                  double *dudx, const double *hoop = nullptr);
 
 // The internal force's pressure conjugate to F-bar's volume change: shift[p] = p_bar - p_p, with
 // p_bar the volume average of p = tr(sigma) / 3 over the particle's group (0 outside a group).

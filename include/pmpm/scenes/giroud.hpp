@@ -151,5 +151,34 @@ inline Result self_consistent(double gamma, double b, double H, double q, double
   return Result{y, eps, J * eps / t, p, J * eps};
 }
 
+// A round void of diameter D (Giroud et al. 1990 treat it alongside the long one): the arching
+// over a round trapdoor is the long void's with the same area over perimeter, D / 4, i.e. width
+// D / 2 (p = arching_pressure(gamma, D / 2, H, q)); the sheet is a spherical cap of chord D and
+// sag y, whose tension is half a cylinder's, T = p D Omega(y, D) / 2, with the same arc strain
+// eps(y, D). Closed with T = J eps as self_consistent: kappa = p D / (4 J) < pi.
+inline Result self_consistent_round(double gamma, double D, double H, double q, double t,
+                                    double E) {
+  detail::require_positive(t, "t");
+  detail::require_positive(E, "E");
+  detail::require_positive(D, "D");
+  const double p = arching_pressure(gamma, 0.5 * D, H, q);
+  detail::require_positive(p, "arching pressure p");
+  const double J = E * t;
+  const double kappa = p * D / (4.0 * J);
+  if (!(kappa < pi))
+    throw std::invalid_argument("pmpm::giroud::self_consistent_round: p D / (4 E t) >= pi, no "
+                                "equilibrium sag for a linear membrane");
+  double lo = 0.0, hi = pi;
+  for (int it = 0; it < 200 && hi - lo > 4.0 * 2.220446049250313e-16 * hi; ++it) {
+    const double th = 0.5 * (lo + hi);
+    const double h = th < 1e-3 ? th * th * th / 6.0 * (1.0 - th * th / 20.0) : th - std::sin(th);
+    (h < kappa ? lo : hi) = th;
+  }
+  const double theta = 0.5 * (lo + hi);
+  const double y = 0.5 * D * std::tan(0.5 * theta);
+  const double eps = strain(y, D);
+  return Result{y, eps, J * eps / t, p, J * eps};
+}
+
 } // namespace giroud
 } // namespace pmpm
