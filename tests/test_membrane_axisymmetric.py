@@ -11,8 +11,9 @@ usage: test_membrane_axisymmetric.py EXE OUTDIR
    eps = |(r', z')| - 1 and th = r / R - 1, N = J (eps + nu th), N_th = J (th + nu eps), and
        (R N r' / (1 + eps))' = N_th,   R N z' / (1 + eps) = q R^2 / 2,
    r = a and z = 0 at the rim, isotropic at the centre. The chain's discrete energy is this
-   functional's, so the two agree as h -> 0 (Hencky's small-slope estimate 0.662 a (q a / E t)^(1/3)
-   = 1.43 m is printed beside: the slopes here reach 0.3). Measured (1 rank; relative errors):
+   functional's, so the two agree as h -> 0 (the Foppl-Hencky small-slope estimate, 0.653 a
+   (q a / E t)^(1/3) = 1.41 m at nu = 0.3 (Fichter 1997), is printed beside: the slopes here reach
+   0.3). Measured (1 rank; relative errors):
        h = 0.5 m  : sag -4.3e-3, centre strain -2.2e-3, rim tension -1.1e-3, rim strain -1.3e-2
        h = 0.25 m : sag -1.3e-3, centre strain -7.3e-4, rim tension -3.1e-4, rim strain -6.4e-3
        h = 0.125 m: sag -3.8e-4, centre strain -2.3e-4, rim tension -9.6e-5, rim strain -3.2e-3
@@ -34,7 +35,7 @@ usage: test_membrane_axisymmetric.py EXE OUTDIR
    across them; docs/limitations.md); the sheet unstrained (meridional and hoop < 1e-5) and not
    slipping (< 1e-5 m); its settlement the waste top's.
 3. The round sinkhole (options/cover_sinkhole_round.opts) at h = 0.5 m, one mesh (-estimate_error
-   0; its two-mesh verdict costs 10 minutes, docs/cover.md): every stage converges,
+   0; its two-mesh verdict costs 5 minutes, docs/cover.md): every stage converges,
    the verdict is PASS with exit 0, the comparison block says the void is round and gives
    Giroud's spherical cap and Terzaghi's round trapdoor, and the sheet starts on the axis and
    stays there (no hole at its centre).
@@ -82,8 +83,8 @@ def membrane_bvp(a, q, J, nu, n=2001):
 
 
 ex = membrane_bvp(A, Q, J, NU)
-print(f"     membrane of revolution: sag {ex['sag']:.5f} m (Hencky, small slopes: "
-      f"{0.662 * A * (Q * A / ET)**(1 / 3):.3f} m), centre strain {ex['strain_centre']:.6f}, "
+print(f"     membrane of revolution: sag {ex['sag']:.5f} m (Foppl-Hencky, small slopes: "
+      f"{0.653 * A * (Q * A / ET)**(1 / 3):.3f} m), centre strain {ex['strain_centre']:.6f}, "
       f"rim strain {ex['strain_rim']:.6f}, rim tension {ex['tension_rim']:.2f} N/m")
 AXI = ["-options_file", "options/catenary.opts", "-geometry", "axisymmetric",
        "-mat_membrane_axial_stiffness", "plane_strain", "-mat_membrane_nu", str(NU)]

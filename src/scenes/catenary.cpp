@@ -116,7 +116,7 @@ public:
       if (drop_ <= 0) drop_ = 1.2 * ex_.sag + 2 * h; // below the first chain's sag
       depth = std::fmax(depth, drop_ + ex2_.sag);
     }
-    if (axi_) // Hencky's sag of a circular membrane, 0.662 a (q a / E t)^(1/3) at nu = 0.3
+    if (axi_) // Foppl-Hencky's sag of a circular membrane, 0.653 a (q a / E t)^(1/3) at nu = 0.3
       depth = std::fmax(depth, 0.7 * span_ *
                                    std::cbrt(probe.line_weight * span_ /
                                              (probe.law.J * (1 - probe.nu * probe.nu))));
