@@ -122,16 +122,17 @@ inline Result paper_form(double gamma, double b, double H, double q, double t, d
 // and found by bisection to machine precision, which is bisection on G(y) over y in (0, inf)
 // after the monotone change of variable; y = (b/2) tan(theta/2). Returned stress = J eps / t
 // (= E eps), which equals p b Omega / t at the root.
-inline Result self_consistent(double gamma, double b, double H, double q, double t, double E) {
-  detail::require_positive(t, "t");
-  detail::require_positive(E, "E");
-  const double p = arching_pressure(gamma, b, H, q);
-  detail::require_positive(p, "arching pressure p");
+namespace detail {
+// The sheet over a void of chord b under pressure p, closed with T = J eps (J = E t): its tension
+// is p b Omega(y) / k (k = 1 a long void's cylinder, k = 2 a round void's spherical cap), so
+// kappa = p b / (2 k J) must be below pi; bisection on theta as explained above.
+inline Result solve_sag(double p, double b, double k, double t, double E, const char *who) {
+  require_positive(p, "arching pressure p");
   const double J = E * t;
-  const double kappa = p * b / (2.0 * J);
+  const double kappa = p * b / (2.0 * k * J);
   if (!(kappa < pi))
-    throw std::invalid_argument("pmpm::giroud::self_consistent: p b / (2 E t) >= pi, no "
-                                "equilibrium sag for a linear membrane");
+    throw std::invalid_argument(std::string("pmpm::giroud::") + who +
+                                ": no equilibrium sag for a linear membrane (kappa >= pi)");
   // h(theta) - kappa, with the small-angle series for h to keep relative accuracy near 0.
   auto f = [kappa](double th) {
     const double h = th < 1e-3 ? th * th * th / 6.0 * (1.0 - th * th / 20.0) : th - std::sin(th);
@@ -150,6 +151,13 @@ inline Result self_consistent(double gamma, double b, double H, double q, double
   const double eps = strain(y, b);
   return Result{y, eps, J * eps / t, p, J * eps};
 }
+} // namespace detail
+
+inline Result self_consistent(double gamma, double b, double H, double q, double t, double E) {
+  detail::require_positive(t, "t");
+  detail::require_positive(E, "E");
+  return detail::solve_sag(arching_pressure(gamma, b, H, q), b, 1.0, t, E, "self_consistent");
+}
 
 // A round void of diameter D (Giroud et al. 1990 treat it alongside the long one): the arching
 // over a round trapdoor is the long void's with the same area over perimeter, D / 4, i.e. width
@@ -161,23 +169,8 @@ inline Result self_consistent_round(double gamma, double D, double H, double q, 
   detail::require_positive(t, "t");
   detail::require_positive(E, "E");
   detail::require_positive(D, "D");
-  const double p = arching_pressure(gamma, 0.5 * D, H, q);
-  detail::require_positive(p, "arching pressure p");
-  const double J = E * t;
-  const double kappa = p * D / (4.0 * J);
-  if (!(kappa < pi))
-    throw std::invalid_argument("pmpm::giroud::self_consistent_round: p D / (4 E t) >= pi, no "
-                                "equilibrium sag for a linear membrane");
-  double lo = 0.0, hi = pi;
-  for (int it = 0; it < 200 && hi - lo > 4.0 * 2.220446049250313e-16 * hi; ++it) {
-    const double th = 0.5 * (lo + hi);
-    const double h = th < 1e-3 ? th * th * th / 6.0 * (1.0 - th * th / 20.0) : th - std::sin(th);
-    (h < kappa ? lo : hi) = th;
-  }
-  const double theta = 0.5 * (lo + hi);
-  const double y = 0.5 * D * std::tan(0.5 * theta);
-  const double eps = strain(y, D);
-  return Result{y, eps, J * eps / t, p, J * eps};
+  return detail::solve_sag(arching_pressure(gamma, 0.5 * D, H, q), D, 2.0, t, E,
+                           "self_consistent_round");
 }
 
 } // namespace giroud
