@@ -12,45 +12,14 @@
 //  - the linear law on the same wrinkled geometry keeps a compressive hoop tension (the two laws
 //    differ exactly where the sheet would wrinkle).
 #include "check.hpp"
+#include "chain_fixture.hpp"
 #include "pmpm/contact/chain.hpp"
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-namespace {
 using pmpm::DIM;
-
-// A chain through the given points (x, y pairs), laid there (rest lengths and radii), as a sheet
-// of revolution with stiffness J and Poisson's ratio nu under the given law.
-pmpm::Chain make_chain(const std::vector<double> &pts, double J, double nu, int law) {
-  pmpm::Chain c;
-  c.n = static_cast<int>(pts.size()) / DIM;
-  c.x = pts;
-  c.x0 = pts;
-  c.axisymmetric = true;
-  c.strain_projection = false;
-  c.nu = nu;
-  c.law.kind = law;
-  c.law.J = J;
-  const int ns = c.n - 1;
-  c.l0.resize(ns);
-  c.r0.resize(ns);
-  for (int k = 0; k < ns; ++k) {
-    c.l0[k] =
-        std::hypot(pts[(k + 1) * DIM] - pts[k * DIM], pts[(k + 1) * DIM + 1] - pts[k * DIM + 1]);
-    c.r0[k] = 0.5 * (pts[k * DIM] + pts[(k + 1) * DIM]);
-  }
-  c.eps.assign(ns, 0.0);
-  c.eps_p.assign(ns, 0.0);
-  c.alpha.assign(ns, 0.0);
-  c.T.assign(ns, 0.0);
-  c.T_hoop.assign(ns, 0.0);
-  c.eps_hoop.assign(ns, 0.0);
-  c.slack.assign(ns, 0);
-  c.f.assign(pts.size(), 0.0);
-  return c;
-}
-} // namespace
+using pmpm_test::make_chain;
 
 int main() {
   const double J = 2.0e5, nu = 0.45, Et = J * (1 - nu * nu);

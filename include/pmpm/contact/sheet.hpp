@@ -1,0 +1,83 @@
+// A geomembrane as a sheet in 3D (issue 23): the chain's ideas (chain.hpp) lifted one dimension.
+// The sheet is a lattice of points joined by triangles (a structured mesh of the sheet); its
+// thickness t is a property, not a resolved dimension. This file holds the sheet's own mechanics,
+// plain functions over its arrays: the lattice, the membrane law and the internal point forces.
+// Coupling to the 3D grid (mass, momentum and forces to the nodes, contact on both faces) is the
+// next step of issue 23 and is not here yet.
+//
+// Kinematics: each triangle maps its reference (laid) position to the current one with a constant
+// deformation gradient F (3 x 2, over the triangle's own orthonormal in-plane reference basis
+// e1, e2). C = F^T F = U^2 gives the principal stretches l1 >= l2 and their reference directions
+// n1, n2; the Biot strains b_i = l_i - 1 are the chain's engineering strain l / l0 - 1 in each
+// principal direction.
+//
+// Law (per unit reference area): the plane-stress sheet of the chain of revolution,
+//   W = J/2 (b1^2 + 2 nu b1 b2 + b2^2),   J = E t / (1 - nu^2),
+// with principal tensions (N/m) N1 = J (b1 + nu b2), N2 = J (b2 + nu b1). A strip stretched
+// along one direction with the other held (b2 = 0) carries N1 = J b1: the plane-strain chain's
+// T = J eps, so an extruded chain and its sheet share one law. The tension-field law
+// (-mat_<name>_law tension_only, as for chains) is the mixed criterion of tension-field theory
+// (Stein and Hedgepeth 1961; Roddeman et al. 1987): taut when N2 >= 0 (the law above); wrinkled
+// when N2 < 0 < b1 (the wrinkles carry nothing across: N2 = 0, N1 = E t b1, W = E t b1^2 / 2);
+// slack when b1 <= 0 (nothing). W is continuous across the three states.
+//
+// Forces: the first Piola-Kirchhoff tension P = F sum_i (N_i / l_i) n_i n_i^T (3 x 2; the
+// rotation of the Biot tension, which is coaxial with U) and, for each corner a of a triangle of
+// reference area A0 with linear shape gradient g_a (in e1, e2),
+//   f_a -= A0 P g_a,
+// the gradient of -sum A0 W over the points (tests/unit/test_sheet.cpp checks it by differences).
+// Each point carries a third of the mass and weight of every triangle it belongs to.
+#pragma once
+#include <vector>
+
+namespace pmpm {
+
+enum class SheetLaw { Linear = 0, TensionField = 1 };
+
+// Principal tensions (N/m) for principal Biot strains b1 >= b2 and the sheet's state there.
+enum class SheetState { Taut = 0, Wrinkled = 1, Slack = 2 };
+struct SheetTensions {
+  double N1 = 0, N2 = 0;
+  SheetState state = SheetState::Taut;
+};
+SheetTensions sheet_tensions(SheetLaw law, double J, double nu, double b1, double b2);
+// The law's energy per unit reference area (J/m^2), W above.
+double sheet_energy_density(SheetLaw law, double J, double nu, double b1, double b2);
+
+struct Sheet {
+  SheetLaw law = SheetLaw::Linear;
+  double J = 0, nu = 0;                  // J = E t / (1 - nu^2) (N/m), Poisson's ratio
+  double area_mass = 0, area_weight = 0; // rho t (kg/m^2), gamma t (N/m^2)
+  // points (3 per point in x, x0, v, f)
+  int n = 0;
+  std::vector<double> x, x0, v, f;
+  std::vector<double> area, mass, weight; // a third of each adjacent triangle's reference area
+  std::vector<char> pinned;               // held fixed (a clamped rim)
+  // triangles: corners (3 per triangle), reference area, the inverse of the reference edge
+  // matrix D = [X1 - X0, X2 - X0] in e1, e2 (row-major 2 x 2), the basis e1, e2 (6 per triangle)
+  int nt = 0;
+  std::vector<int> tri;
+  std::vector<double> a0, dinv, basis;
+  // per triangle after sheet_update_forces: the Biot strain U - I in e1, e2 (B11, B22, B12), the
+  // principal strains b1 >= b2 and tensions N1, N2, the state
+  std::vector<double> biot, b, N;
+  std::vector<SheetState> state;
+};
+
+// A flat disc of radius R centred at c, in the horizontal plane y = c[1] (pmpm's vertical is y;
+// the sheet spans x and z): a centre point and rings at r_k = R k / K, K = ceil(R / ds), ring k
+// holding 6k points (spacing pi/3 of the ring gap), joined ring to ring by triangles; the rim
+// (ring K) is pinned. Points and triangles in a fixed order (rank-independent). Sets x = x0, v = 0
+// and the reference (sheet_reference); the law and material constants are the caller's.
+void sheet_disc(double R, double ds, const double c[3], Sheet &s);
+// The reference geometry from x0: areas, D^-1, bases; point areas, masses and weights.
+void sheet_reference(Sheet &s);
+// Strains, tensions and the internal point forces f from the current positions x.
+void sheet_update_forces(Sheet &s);
+// The stored energy sum_t A0 W (J).
+double sheet_energy(const Sheet &s);
+// Triangle t's Biot strain along a unit reference direction d (3 components, in the sheet's
+// plane): d^T (U - I) d.
+double sheet_strain_along(const Sheet &s, int t, const double d[3]);
+
+} // namespace pmpm

@@ -1,0 +1,191 @@
+// A geomembrane sheet in 3D (sheet.hpp): the lattice, the plane-stress Biot law and the internal
+// point forces, plain functions over the sheet's arrays.
+#include "pmpm/contact/sheet.hpp"
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+namespace pmpm {
+
+using Mat32 = Eigen::Matrix<double, 3, 2>;
+
+SheetTensions sheet_tensions(SheetLaw law, double J, double nu, double b1, double b2) {
+  SheetTensions t;
+  t.N1 = J * (b1 + nu * b2);
+  t.N2 = J * (b2 + nu * b1);
+  if (law == SheetLaw::Linear || t.N2 >= 0.0) return t;
+  if (b1 > 0.0) { // wrinkled: the uniaxial sheet, E t = J (1 - nu^2), along n1
+    t.N1 = J * (1.0 - nu * nu) * b1;
+    t.N2 = 0.0;
+    t.state = SheetState::Wrinkled;
+  } else {
+    t.N1 = t.N2 = 0.0;
+    t.state = SheetState::Slack;
+  }
+  return t;
+}
+
+double sheet_energy_density(SheetLaw law, double J, double nu, double b1, double b2) {
+  const SheetTensions t = sheet_tensions(law, J, nu, b1, b2);
+  switch (t.state) {
+  case SheetState::Taut:
+    return 0.5 * J * (b1 * b1 + 2.0 * nu * b1 * b2 + b2 * b2);
+  case SheetState::Wrinkled:
+    return 0.5 * J * (1.0 - nu * nu) * b1 * b1;
+  case SheetState::Slack:
+    break;
+  }
+  return 0.0;
+}
+
+void sheet_disc(double R, double ds, const double c[3], Sheet &s) {
+  const int K = std::max(1, static_cast<int>(std::ceil(R / ds - 1e-9)));
+  std::vector<int> first(K + 2, 0); // ring k's points are [first[k], first[k + 1])
+  for (int k = 0; k <= K; ++k) first[k + 1] = first[k] + (k == 0 ? 1 : 6 * k);
+  s.n = first[K + 1];
+  s.x0.assign(3 * static_cast<size_t>(s.n), 0.0);
+  s.pinned.assign(s.n, 0);
+  for (int k = 0; k <= K; ++k) {
+    const int m = first[k + 1] - first[k];
+    const double r = R * k / K;
+    for (int j = 0; j < m; ++j) {
+      const double th = 2.0 * M_PI * j / m;
+      double *X = &s.x0[3 * static_cast<size_t>(first[k] + j)];
+      X[0] = c[0] + r * std::cos(th);
+      X[1] = c[1];
+      X[2] = c[2] + r * std::sin(th);
+      s.pinned[first[k] + j] = k == K;
+    }
+  }
+  // ring k - 1 to ring k: walk both rings by angle, each triangle advancing one of them
+  s.tri.clear();
+  for (int k = 1; k <= K; ++k) {
+    const int na = first[k] - first[k - 1], nb = first[k + 1] - first[k];
+    int i = 0, j = 0;
+    while (i < na || j < nb) {
+      const double ta = static_cast<double>(i + 1) / na, tb = static_cast<double>(j + 1) / nb;
+      const int A = first[k - 1] + i % na, B = first[k] + j % nb;
+      if (i < na && (j == nb || ta < tb)) {
+        const int A1 = first[k - 1] + (i + 1) % na;
+        if (A1 != A) s.tri.insert(s.tri.end(), {A, B, A1});
+        ++i;
+      } else {
+        s.tri.insert(s.tri.end(), {A, B, first[k] + (j + 1) % nb});
+        ++j;
+      }
+    }
+  }
+  s.nt = static_cast<int>(s.tri.size()) / 3;
+  s.x = s.x0;
+  s.v.assign(s.x0.size(), 0.0);
+  s.f.assign(s.x0.size(), 0.0);
+  sheet_reference(s);
+}
+
+void sheet_reference(Sheet &s) {
+  s.a0.assign(s.nt, 0.0);
+  s.dinv.assign(4 * static_cast<size_t>(s.nt), 0.0);
+  s.basis.assign(6 * static_cast<size_t>(s.nt), 0.0);
+  s.area.assign(s.n, 0.0);
+  for (int t = 0; t < s.nt; ++t) {
+    const int *v = &s.tri[3 * static_cast<size_t>(t)];
+    const Eigen::Map<const Eigen::Vector3d> X0(&s.x0[3 * v[0]]), X1(&s.x0[3 * v[1]]),
+        X2(&s.x0[3 * v[2]]);
+    const Eigen::Vector3d d1 = X1 - X0, d2 = X2 - X0;
+    const Eigen::Vector3d e1 = d1.normalized(), e2 = d1.cross(d2).normalized().cross(e1);
+    Eigen::Matrix2d D;
+    D << d1.dot(e1), d2.dot(e1), d1.dot(e2), d2.dot(e2);
+    const Eigen::Matrix2d Di = D.inverse();
+    s.a0[t] = 0.5 * std::fabs(D.determinant());
+    for (int q = 0; q < 4; ++q) s.dinv[4 * static_cast<size_t>(t) + q] = Di(q / 2, q % 2);
+    for (int d = 0; d < 3; ++d) {
+      s.basis[6 * static_cast<size_t>(t) + d] = e1[d];
+      s.basis[6 * static_cast<size_t>(t) + 3 + d] = e2[d];
+    }
+    for (int a = 0; a < 3; ++a) s.area[v[a]] += s.a0[t] / 3.0;
+  }
+  s.mass.resize(s.n);
+  s.weight.resize(s.n);
+  for (int i = 0; i < s.n; ++i) {
+    s.mass[i] = s.area_mass * s.area[i];
+    s.weight[i] = s.area_weight * s.area[i];
+  }
+  s.biot.assign(3 * static_cast<size_t>(s.nt), 0.0);
+  s.b.assign(2 * static_cast<size_t>(s.nt), 0.0);
+  s.N.assign(2 * static_cast<size_t>(s.nt), 0.0);
+  s.state.assign(s.nt, SheetState::Taut);
+}
+
+namespace {
+// Triangle t's deformation gradient over its reference basis (3 x 2).
+Mat32 Deformation(const Sheet &s, int t) {
+  const int *v = &s.tri[3 * static_cast<size_t>(t)];
+  const Eigen::Map<const Eigen::Vector3d> x0(&s.x[3 * v[0]]), x1(&s.x[3 * v[1]]),
+      x2(&s.x[3 * v[2]]);
+  Mat32 E;
+  E.col(0) = x1 - x0;
+  E.col(1) = x2 - x0;
+  const Eigen::Map<const Eigen::Matrix<double, 2, 2, Eigen::RowMajor>> Di(
+      &s.dinv[4 * static_cast<size_t>(t)]);
+  return E * Di;
+}
+} // namespace
+
+void sheet_update_forces(Sheet &s) {
+  std::fill(s.f.begin(), s.f.end(), 0.0);
+  for (int t = 0; t < s.nt; ++t) {
+    const Mat32 F = Deformation(s, t);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+    eig.computeDirect(F.transpose() * F);
+    // ascending eigenvalues: column 1 is the larger stretch
+    const double l1 = std::sqrt(std::fmax(eig.eigenvalues()[1], 0.0)),
+                 l2 = std::sqrt(std::fmax(eig.eigenvalues()[0], 0.0));
+    const Eigen::Vector2d n1 = eig.eigenvectors().col(1), n2 = eig.eigenvectors().col(0);
+    const SheetTensions T = sheet_tensions(s.law, s.J, s.nu, l1 - 1.0, l2 - 1.0);
+    const Eigen::Matrix2d B = (l1 - 1.0) * n1 * n1.transpose() + (l2 - 1.0) * n2 * n2.transpose();
+    double *bt = &s.biot[3 * static_cast<size_t>(t)];
+    bt[0] = B(0, 0);
+    bt[1] = B(1, 1);
+    bt[2] = B(0, 1);
+    s.b[2 * t] = l1 - 1.0;
+    s.b[2 * t + 1] = l2 - 1.0;
+    s.N[2 * t] = T.N1;
+    s.N[2 * t + 1] = T.N2;
+    s.state[t] = T.state;
+    if (T.N1 == 0.0 && T.N2 == 0.0) continue;
+    // P = F U^-1 T_B (the Biot tension rotated into place); l_i > 0 wherever a tension acts
+    const Mat32 P = F * (T.N1 / l1 * n1 * n1.transpose() +
+                         (T.N2 != 0.0 ? T.N2 / l2 : 0.0) * n2 * n2.transpose());
+    const Eigen::Map<const Eigen::Matrix<double, 2, 2, Eigen::RowMajor>> Di(
+        &s.dinv[4 * static_cast<size_t>(t)]);
+    const Eigen::Vector2d g1 = Di.row(0).transpose(), g2 = Di.row(1).transpose(), g0 = -(g1 + g2);
+    const Eigen::Vector2d *g[3] = {&g0, &g1, &g2};
+    const int *v = &s.tri[3 * static_cast<size_t>(t)];
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::Vector3d fa = -s.a0[t] * (P * *g[a]);
+      for (int d = 0; d < 3; ++d) s.f[3 * v[a] + d] += fa[d];
+    }
+  }
+}
+
+double sheet_energy(const Sheet &s) {
+  double U = 0;
+  for (int t = 0; t < s.nt; ++t) {
+    const Mat32 F = Deformation(s, t);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+    eig.computeDirect(F.transpose() * F);
+    const double l1 = std::sqrt(std::fmax(eig.eigenvalues()[1], 0.0)),
+                 l2 = std::sqrt(std::fmax(eig.eigenvalues()[0], 0.0));
+    U += s.a0[t] * sheet_energy_density(s.law, s.J, s.nu, l1 - 1.0, l2 - 1.0);
+  }
+  return U;
+}
+
+double sheet_strain_along(const Sheet &s, int t, const double d[3]) {
+  const double *e = &s.basis[6 * static_cast<size_t>(t)], *B = &s.biot[3 * static_cast<size_t>(t)];
+  const double u = d[0] * e[0] + d[1] * e[1] + d[2] * e[2],
+               w = d[0] * e[3] + d[1] * e[4] + d[2] * e[5];
+  return B[0] * u * u + 2.0 * B[2] * u * w + B[1] * w * w;
+}
+
+} // namespace pmpm
