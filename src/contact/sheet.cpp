@@ -181,6 +181,48 @@ double sheet_energy(const Sheet &s) {
   return U;
 }
 
+void sheet_normals(Sheet &s) {
+  s.nrm.assign(3 * static_cast<size_t>(s.n), 0.0);
+  for (int t = 0; t < s.nt; ++t) {
+    const int *v = &s.tri[3 * static_cast<size_t>(t)];
+    const Eigen::Map<const Eigen::Vector3d> x0(&s.x[3 * v[0]]), x1(&s.x[3 * v[1]]),
+        x2(&s.x[3 * v[2]]);
+    Eigen::Vector3d n = (x1 - x0).cross(x2 - x0); // twice the area times the unit normal
+    if (n[1] < 0) n = -n;                         // pointing up (+y): the lattice's order varies
+    for (int a = 0; a < 3; ++a)
+      for (int d = 0; d < 3; ++d) s.nrm[3 * v[a] + d] += n[d];
+  }
+  for (int i = 0; i < s.n; ++i) {
+    double *n = &s.nrm[3 * static_cast<size_t>(i)];
+    const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int d = 0; d < 3; ++d) n[d] = l > 0 ? n[d] / l : (d == 1 ? 1.0 : 0.0);
+  }
+}
+
+SheetDiscStrains sheet_disc_strains(const Sheet &s, const double c[3], double R, double dr) {
+  double ec = 0, nc = 0, band[2] = {0, 0}, wb[2] = {0, 0};
+  for (int t = 0; t < s.nt; ++t) {
+    const int *v = &s.tri[3 * static_cast<size_t>(t)];
+    double X[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d) X[d] += (s.x0[3 * v[k] + d] - c[d]) / 3;
+    const double r = std::hypot(X[0], X[2]);
+    if (v[0] == 0 || v[1] == 0 || v[2] == 0) { // point 0 is the centre
+      ec += 0.5 * (s.b[2 * t] + s.b[2 * t + 1]);
+      nc += 1;
+    }
+    const int k = r > R - dr ? 0 : r > R - 2 * dr ? 1 : -1;
+    if (k < 0) continue;
+    const double dir[3] = {X[0] / r, 0.0, X[2] / r};
+    band[k] += s.a0[t] * sheet_strain_along(s, t, dir);
+    wb[k] += s.a0[t];
+  }
+  SheetDiscStrains out;
+  out.centre = nc > 0 ? ec / nc : 0.0;
+  out.rim = wb[0] > 0 && wb[1] > 0 ? 1.5 * band[0] / wb[0] - 0.5 * band[1] / wb[1] : 0.0;
+  return out;
+}
+
 double sheet_strain_along(const Sheet &s, int t, const double d[3]) {
   const double *e = &s.basis[6 * static_cast<size_t>(t)], *B = &s.biot[3 * static_cast<size_t>(t)];
   const double u = d[0] * e[0] + d[1] * e[1] + d[2] * e[2],

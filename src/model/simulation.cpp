@@ -737,8 +737,9 @@ PetscErrorCode SimulationSetup(Simulation &sim) {
   if (sim.scene) PetscCall(sim.scene->setup(sim));
   PetscCall(BoundaryFromOptions(sim));
   PetscCall(GeometryCheck(sim));
-  PetscCheck(!sim.model.mats.empty() || !sim.model.chain_specs.empty() || help, sim.comm,
-             PETSC_ERR_PLIB, "scene defined no material");
+  PetscCheck(!sim.model.mats.empty() || !sim.model.chain_specs.empty() || !sim.sheets.empty() ||
+                 help,
+             sim.comm, PETSC_ERR_PLIB, "scene defined no material");
   PetscCall(CheckFbarDilatancy(sim));
 
   double cmax = 0; // the fastest material's wave speed

@@ -17,6 +17,7 @@ std::unique_ptr<Scene> make_cover_scene();
 std::unique_ptr<Scene> make_footing_scene();
 std::unique_ptr<Scene> make_trapdoor_scene();
 std::unique_ptr<Scene> make_cylinder_scene();
+std::unique_ptr<Scene> make_sheet_scene();
 
 const std::vector<SceneEntry> &Scenes() {
   static const std::vector<SceneEntry> scenes = {
@@ -43,6 +44,8 @@ const std::vector<SceneEntry> &Scenes() {
        "active trapdoor in cohesionless soil (method.md 6.4, trapdoor.md)"},
       {"cylinder", make_cylinder_scene,
        "thick-walled cylinder under pressure, axisymmetric (Lame; method.md 9)"},
+      {"sheet", make_sheet_scene,
+       "3D: a circular membrane clamped at its rim under its weight (method.md 10)"},
   };
   return scenes;
 }

@@ -103,14 +103,14 @@ std::string Obj(const std::vector<std::pair<std::string, double>> &kv) {
 }
 
 // The sheet's points and segments as plain arrays (chain.hpp: every rank holds them all).
-struct Sheet {
+struct TrenchSheet {
   int n = 0;
   std::vector<double> x0, x, y, length, p_top, p_bot, slip_top, slip_bot; // points
   std::vector<double> eps, T, l0;                                         // segments
 };
 
-Sheet FullSheet(const Chain &c) {
-  Sheet s;
+TrenchSheet FullSheet(const Chain &c) {
+  TrenchSheet s;
   s.n = c.n;
   for (int i = 0; i < c.n; ++i) {
     s.x0.push_back(c.x0[i * DIM]);
@@ -144,12 +144,12 @@ class TrenchScene final : public Scene {
   static constexpr int kHist = 11;
 
   // where the current sheet crosses x = s: segment k and fraction r
-  static void Cross(const Sheet &q, double s, int &k, double &r) {
+  static void Cross(const TrenchSheet &q, double s, int &k, double &r) {
     k = 0;
     while (k + 2 < q.n && q.x[k + 1] < s) ++k;
     r = (s - q.x[k]) / (q.x[k + 1] - q.x[k]);
   }
-  static int Index0(const Sheet &q, double s) {
+  static int Index0(const TrenchSheet &q, double s) {
     int best = 0;
     for (int i = 0; i < q.n; ++i)
       if (std::fabs(q.x0[i] - s) < std::fabs(q.x0[best] - s)) best = i;
@@ -174,19 +174,19 @@ class TrenchScene final : public Scene {
   };
 
   // point values from the adjacent segments
-  static double PointValue(const Sheet &q, const std::vector<double> &seg, int i) {
+  static double PointValue(const TrenchSheet &q, const std::vector<double> &seg, int i) {
     const int a = std::max(i - 1, 0), b = std::min(i, q.n - 2);
     return 0.5 * (seg[a] + seg[b]);
   }
   // a point field at initial abscissa s (linear interpolation between points)
-  static double At0(const Sheet &q, double s, const std::function<double(int)> &f) {
+  static double At0(const TrenchSheet &q, double s, const std::function<double(int)> &f) {
     int k = 0;
     while (k + 2 < q.n && q.x0[k + 1] < s) ++k;
     const double r = (s - q.x0[k]) / (q.x0[k + 1] - q.x0[k]);
     return (1 - r) * f(k) + r * f(k + 1);
   }
 
-  Span MeasureSpan(const Sheet &q) const {
+  Span MeasureSpan(const TrenchSheet &q) const {
     Span sp;
     const int n = q.n;
     // sag: absolute at mid-trench, and relative to the chord between the current sheet points
@@ -232,7 +232,7 @@ class TrenchScene final : public Scene {
   // The pressure on the sheet over the void: the chain's p_top (length-weighted) over the points
   // now above the trench, and over its central 80 % (clear of the corners, where the sheet bends
   // over the edges and the cover presses it onto them); and from the sheet's equilibrium.
-  SpanPressure MeasurePressure(const Sheet &q, const Span &sp, double line_weight) const {
+  SpanPressure MeasurePressure(const TrenchSheet &q, const Span &sp, double line_weight) const {
     SpanPressure sp_p;
     const double a_in = 0.4 * B_;
     double pw[2] = {0, 0}, pwi[2] = {0, 0}, pb[2] = {0, 0};
@@ -277,7 +277,7 @@ class TrenchScene final : public Scene {
   }
 
   // The anchorage on side e (0 left, 1 right), from the edge's point i0 outward.
-  static Anchorage MeasureAnchorage(const Sheet &q, int e, int i0) {
+  static Anchorage MeasureAnchorage(const TrenchSheet &q, int e, int i0) {
     const int n = q.n, step = e == 0 ? -1 : 1;
     Anchorage a;
     a.T_edge = PointValue(q, q.T, i0);
@@ -479,7 +479,7 @@ public:
   // The relaxation's history (every rank holds the chain): how the sag and the anchorage settle.
   PetscErrorCode monitor(Simulation &sim) override {
     if (every_ <= 0 || sim.run.step % every_ != 0 || sim.chains.empty()) return 0;
-    const Sheet q = FullSheet(sim.chains[0]);
+    const TrenchSheet q = FullSheet(sim.chains[0]);
     const int n = q.n, im = Index0(q, xc_), ie0 = Index0(q, xe_[0]), ie1 = Index0(q, xe_[1]);
     double pw = 0, lw = 0, pa = 0, la = 0;
     for (int i = 0; i < n; ++i) {
@@ -533,7 +533,7 @@ public:
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     PetscFunctionBeginUser;
     const Chain &c = sim.chains[0];
-    const Sheet q = FullSheet(c);
+    const TrenchSheet q = FullSheet(c);
     const double J = c.law.J;
     const double gamma = sim.model.mats[COVER].gamma, sigma_n = gamma * H_;
     const double mu_sum = c.top.mu + c.bottom.mu, m_cf = mu_sum * sigma_n;

@@ -424,6 +424,8 @@ template <int D> PetscErrorCode StaticResidualIn(Simulation &sim, ShapeKind shap
   // the chains' tension, weight and end loads (grid_update sums a node's bodies)
   if constexpr (D == DIM)
     for (const Chain &c : sim.chains) p2g_chain(c, load, G, g);
+  else
+    p2g_sheets(sim, load, G); // the 3D sheets' (step_hooks.hpp)
   PetscCall(GridRestoreLocal(g, G));
   PetscCall(ParticlesRestoreView(sim.parts, P));
   PetscCall(GridLocalToGlobalAdd(g));
@@ -454,6 +456,7 @@ PetscErrorCode InitialWaveSpeed(Simulation &sim, double *max_speed) {
     c = std::fmax(c, std::sqrt(sim.wave_modulus[P.mat[p]] * P.vol[p] / P.mass[p]));
   PetscCall(ParticlesRestoreView(sim.parts, P));
   for (const Chain &ch : sim.chains) c = std::fmax(c, ch.wave_speed());
+  for (const Sheet &s : sim.sheets) c = std::fmax(c, std::sqrt(s.J / s.area_mass));
   PetscCallMPI(MPI_Allreduce(&c, max_speed, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
   PetscFunctionReturn(0);
 }

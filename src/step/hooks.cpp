@@ -4,11 +4,12 @@
 
 namespace pmpm {
 
-extern const StepHook interface_hook, fbar_hook, chain_hook, eigenstrain_hook, support_hook;
+extern const StepHook interface_hook, fbar_hook, chain_hook, sheet_hook, eigenstrain_hook,
+    support_hook;
 
 const std::vector<const StepHook *> &StepHooks() {
-  static const std::vector<const StepHook *> hooks = {&interface_hook, &fbar_hook, &chain_hook,
-                                                      &eigenstrain_hook, &support_hook};
+  static const std::vector<const StepHook *> hooks = {
+      &interface_hook, &fbar_hook, &chain_hook, &sheet_hook, &eigenstrain_hook, &support_hook};
   return hooks;
 }
 

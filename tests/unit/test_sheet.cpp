@@ -298,27 +298,8 @@ int main() {
       pmpm::sheet_disc(a, ds, c, s);
       const int its = relax(s, 1e-9, 4000000);
       CHECK(its < 4000000);
-      // centre: the triangles at the centre point; rim: the radial strain of the two outer bands
-      // of triangles (centroid radius in (a - ds, a) and (a - 2 ds, a - ds)), area-weighted
-      double ec = 0, nc = 0, band[2] = {0, 0}, wb[2] = {0, 0};
-      for (int t = 0; t < s.nt; ++t) {
-        const int *vt = &s.tri[3 * t];
-        double X[3] = {0, 0, 0};
-        for (int k = 0; k < 3; ++k)
-          for (int d = 0; d < 3; ++d) X[d] += s.x0[3 * vt[k] + d] / 3;
-        const double r = std::hypot(X[0], X[2]);
-        if (vt[0] == 0 || vt[1] == 0 || vt[2] == 0) {
-          ec += 0.5 * (s.b[2 * t] + s.b[2 * t + 1]);
-          nc += 1;
-        }
-        const int k = r > a - ds ? 0 : r > a - 2 * ds ? 1 : -1;
-        if (k < 0) continue;
-        const double dir[3] = {X[0] / r, 0.0, X[2] / r};
-        band[k] += s.a0[t] * pmpm::sheet_strain_along(s, t, dir);
-        wb[k] += s.a0[t];
-      }
-      const double sag = -s.x[1], eps_c = ec / nc,
-                   eps_r = 1.5 * band[0] / wb[0] - 0.5 * band[1] / wb[1];
+      const pmpm::SheetDiscStrains st = pmpm::sheet_disc_strains(s, c, a, ds);
+      const double sag = -s.x[1], eps_c = st.centre, eps_r = st.rim;
       const double err = sag / sag_ref - 1;
       std::printf("sheet ds = a/%g: %d points, %d iterations; sag %.6g m (%+.2e), centre strain "
                   "%.6g (%+.2e), rim strain %.6g (%+.2e)\n",

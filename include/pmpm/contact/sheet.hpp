@@ -3,7 +3,9 @@
 // thickness t is a property, not a resolved dimension. This file holds the sheet's own mechanics,
 // plain functions over its arrays: the lattice, the membrane law and the internal point forces.
 // Coupling to the 3D grid (mass, momentum and forces to the nodes, contact on both faces) is the
-// next step of issue 23 and is not here yet.
+// the sheet scene's first step (src/step/sheets.cpp: mass, momentum and forces to the nodes of
+// the 3D grid, the points moved by the grid's velocity, a sheet alone); contact on both faces is
+// not here yet.
 //
 // Kinematics: each triangle maps its reference (laid) position to the current one with a constant
 // deformation gradient F (3 x 2, over the triangle's own orthonormal in-plane reference basis
@@ -51,6 +53,7 @@ struct Sheet {
   // points (3 per point in x, x0, v, f)
   int n = 0;
   std::vector<double> x, x0, v, f;
+  std::vector<double> nrm; // unit normal per point (the mean of its triangles'), sheet_normals
   std::vector<double> area, mass, weight; // a third of each adjacent triangle's reference area
   std::vector<char> pinned;               // held fixed (a clamped rim)
   // triangles: corners (3 per triangle), reference area, the inverse of the reference edge
@@ -76,6 +79,17 @@ void sheet_reference(Sheet &s);
 void sheet_update_forces(Sheet &s);
 // The stored energy sum_t A0 W (J).
 double sheet_energy(const Sheet &s);
+// The points' unit normals from the current positions: the area-weighted mean of the normals
+// of the triangles around each point.
+void sheet_normals(Sheet &s);
+// A disc's answers (sheet_disc's lattice of radius R and ring gap dr): the centre strain (the
+// mean of (b1 + b2) / 2 over the triangles at the centre point) and the rim's radial strain (the
+// area-weighted radial strain of the outer band of triangles, centroids within dr of the rim, and
+// of the next band, extrapolated linearly to the rim, as a chain's two last segments are).
+struct SheetDiscStrains {
+  double centre = 0, rim = 0;
+};
+SheetDiscStrains sheet_disc_strains(const Sheet &s, const double c[3], double R, double dr);
 // Triangle t's Biot strain along a unit reference direction d (3 components, in the sheet's
 // plane): d^T (U - I) d.
 double sheet_strain_along(const Sheet &s, int t, const double d[3]);

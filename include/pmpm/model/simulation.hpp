@@ -10,6 +10,7 @@
 #include "pmpm/model/geometry.hpp"
 #include "pmpm/core/grid.hpp"
 #include "pmpm/contact/interface.hpp"
+#include "pmpm/contact/sheet.hpp"
 #include "pmpm/materials/material.hpp"
 #include "pmpm/core/particles.hpp"
 #include "pmpm/model/solver.hpp"
@@ -244,12 +245,13 @@ struct Simulation {
   }
   Balance balance; // -balance: the partition by particle counts (balance.hpp)
   Particles parts;
-  InterfaceGrid iface_grid;              // body 1's field, only when an interface is on
-  std::vector<PetscInt> iface_idx;       // body-1 (colour 1) particles (this rank)
-  InterfaceStats iface_stats;            // last step's counts (global)
-  double iface_impulse[2] = {0, 0};      // normal impulse over the run: compression, tension
-  std::vector<Chain> chains;             // every rank holds every point
-  ContactStats contact_stats;            // last step's (global)
+  InterfaceGrid iface_grid;         // body 1's field, only when an interface is on
+  std::vector<PetscInt> iface_idx;  // body-1 (colour 1) particles (this rank)
+  InterfaceStats iface_stats;       // last step's counts (global)
+  double iface_impulse[2] = {0, 0}; // normal impulse over the run: compression, tension
+  std::vector<Chain> chains;        // every rank holds every point
+  std::vector<Sheet> sheets;        // -dim 3: sheets of a lattice (sheet.hpp), whole on every rank
+  ContactStats contact_stats;       // last step's (global)
   double contact_impulse[2] = {0, 0};    // chain faces' normal impulse over the run: +, -
   std::vector<double> wave_modulus;      // per material
   std::vector<std::vector<int>> mat_idx; // particles of each material (this rank)

@@ -73,6 +73,9 @@ template <int D> const HookPhasesT<D> &Phases(const StepHook &h) {
     return h.phases;
 }
 
+// The 3D sheets' forces and weight on the grid (src/step/sheets.cpp), for the static residual.
+void p2g_sheets(const Simulation &sim, const LoadT<3> &load, const GridViewT<3> &G);
+
 // Every hook, in the order the phases call them.
 const std::vector<const StepHook *> &StepHooks();
 
