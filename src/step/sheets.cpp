@@ -160,8 +160,8 @@ PetscErrorCode Reductions(StepState &S) {
       const double s2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
       ke += 0.5 * s.mass[i] * s2;
       v2 = std::fmax(v2, s2);
-      pw +=
-          S.load.factor * s.weight[i] * (S.load.gdir[0] * v[0] + S.load.gdir[1] * v[1] + gz * v[2]);
+      // at full weight: the budget multiplies by the load factor (relaxation.cpp, LoadWork)
+      pw += s.weight[i] * (S.load.gdir[0] * v[0] + S.load.gdir[1] * v[1] + gz * v[2]);
     }
   }
   rep.g2p.kinetic += ke;
