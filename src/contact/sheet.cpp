@@ -129,18 +129,29 @@ Mat32 Deformation(const Sheet &s, int t) {
       &s.dinv[4 * static_cast<size_t>(t)]);
   return E * Di;
 }
+
+// The principal stretches l1 >= l2 of a triangle's F and their reference directions n1, n2.
+struct Stretches {
+  double l1, l2;
+  Eigen::Vector2d n1, n2;
+};
+Stretches PrincipalStretches(const Mat32 &F) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+  eig.computeDirect(F.transpose() * F);
+  // ascending eigenvalues: column 1 is the larger stretch
+  return {std::sqrt(std::fmax(eig.eigenvalues()[1], 0.0)),
+          std::sqrt(std::fmax(eig.eigenvalues()[0], 0.0)), eig.eigenvectors().col(1),
+          eig.eigenvectors().col(0)};
+}
 } // namespace
 
 void sheet_update_forces(Sheet &s) {
   std::fill(s.f.begin(), s.f.end(), 0.0);
   for (int t = 0; t < s.nt; ++t) {
     const Mat32 F = Deformation(s, t);
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
-    eig.computeDirect(F.transpose() * F);
-    // ascending eigenvalues: column 1 is the larger stretch
-    const double l1 = std::sqrt(std::fmax(eig.eigenvalues()[1], 0.0)),
-                 l2 = std::sqrt(std::fmax(eig.eigenvalues()[0], 0.0));
-    const Eigen::Vector2d n1 = eig.eigenvectors().col(1), n2 = eig.eigenvectors().col(0);
+    const Stretches st = PrincipalStretches(F);
+    const double l1 = st.l1, l2 = st.l2;
+    const Eigen::Vector2d &n1 = st.n1, &n2 = st.n2;
     const SheetTensions T = sheet_tensions(s.law, s.J, s.nu, l1 - 1.0, l2 - 1.0);
     const Eigen::Matrix2d B = (l1 - 1.0) * n1 * n1.transpose() + (l2 - 1.0) * n2 * n2.transpose();
     double *bt = &s.biot[3 * static_cast<size_t>(t)];
@@ -171,12 +182,8 @@ void sheet_update_forces(Sheet &s) {
 double sheet_energy(const Sheet &s) {
   double U = 0;
   for (int t = 0; t < s.nt; ++t) {
-    const Mat32 F = Deformation(s, t);
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
-    eig.computeDirect(F.transpose() * F);
-    const double l1 = std::sqrt(std::fmax(eig.eigenvalues()[1], 0.0)),
-                 l2 = std::sqrt(std::fmax(eig.eigenvalues()[0], 0.0));
-    U += s.a0[t] * sheet_energy_density(s.law, s.J, s.nu, l1 - 1.0, l2 - 1.0);
+    const Stretches st = PrincipalStretches(Deformation(s, t));
+    U += s.a0[t] * sheet_energy_density(s.law, s.J, s.nu, st.l1 - 1.0, st.l2 - 1.0);
   }
   return U;
 }

@@ -74,15 +74,14 @@ public:
     centre_[0] = 0;
     centre_[1] = y0_;
     centre_[2] = half * h;
-    dr_ = h;
     Sheet s;
     s.law = probe.law.kind == field ? SheetLaw::TensionField : SheetLaw::Linear;
     s.J = probe.law.J;
     s.nu = probe.nu;
     s.area_mass = probe.line_mass;
     s.area_weight = probe.line_weight;
-    sheet_disc(radius_, dr_, centre_, s);
-    dr_ = radius_ / std::ceil(radius_ / h - 1e-9); // the lattice's ring gap
+    sheet_disc(radius_, h, centre_, s);
+    dr_ = radius_ / std::ceil(radius_ / h - 1e-9); // the lattice's ring gap (sheet_disc's K)
     sheet_normals(s);
     sim.sheets.push_back(std::move(s));
     PetscFunctionReturn(0);

@@ -131,11 +131,7 @@ PetscErrorCode Reductions(StepState &S) {
     else
       pw += ch.end_force[0] * v[0] + ch.end_force[1] * v[1];
   }
-  rep.g2p.kinetic += ke;
-  rep.g2p.max_c = std::fmax(rep.g2p.max_c, c);
-  rep.g2p.max_v = std::fmax(rep.g2p.max_v, std::sqrt(v2));
-  rep.g2p.max_speed = rep.g2p.max_c + rep.g2p.max_v;
-  if (sim.rank == 0) rep.g2p.weight_power += pw; // the budget sums its local parts over ranks
+  report_points(rep, sim.rank, ke, c, v2, pw);
   PetscFunctionReturn(0);
 }
 } // namespace

@@ -456,7 +456,7 @@ PetscErrorCode InitialWaveSpeed(Simulation &sim, double *max_speed) {
     c = std::fmax(c, std::sqrt(sim.wave_modulus[P.mat[p]] * P.vol[p] / P.mass[p]));
   PetscCall(ParticlesRestoreView(sim.parts, P));
   for (const Chain &ch : sim.chains) c = std::fmax(c, ch.wave_speed());
-  for (const Sheet &s : sim.sheets) c = std::fmax(c, std::sqrt(s.J / s.area_mass));
+  for (const Sheet &s : sim.sheets) c = std::fmax(c, s.wave_speed());
   PetscCallMPI(MPI_Allreduce(&c, max_speed, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
   PetscFunctionReturn(0);
 }

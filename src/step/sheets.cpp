@@ -154,7 +154,7 @@ PetscErrorCode Reductions(StepState &S) {
   double ke = 0, v2 = 0, c = 0, pw = 0;
   const double gz = sim.set.gdir_z;
   for (const Sheet &s : sim.sheets) {
-    c = std::fmax(c, std::sqrt(s.J / s.area_mass));
+    c = std::fmax(c, s.wave_speed());
     for (int i = 0; i < s.n; ++i) {
       const double *v = &s.v[3 * static_cast<size_t>(i)];
       const double s2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
@@ -164,11 +164,7 @@ PetscErrorCode Reductions(StepState &S) {
       pw += s.weight[i] * (S.load.gdir[0] * v[0] + S.load.gdir[1] * v[1] + gz * v[2]);
     }
   }
-  rep.g2p.kinetic += ke;
-  rep.g2p.max_c = std::fmax(rep.g2p.max_c, c);
-  rep.g2p.max_v = std::fmax(rep.g2p.max_v, std::sqrt(v2));
-  rep.g2p.max_speed = rep.g2p.max_c + rep.g2p.max_v;
-  if (sim.rank == 0) rep.g2p.weight_power += pw; // the budget sums its local parts over ranks
+  report_points(rep, sim.rank, ke, c, v2, pw);
   PetscFunctionReturn(0);
 }
 } // namespace

@@ -68,6 +68,17 @@ double max_abs(const std::vector<double> &v) {
   return m;
 }
 
+// A clamped disc of radius R about the origin (ring gap ds), linear law J, nu, weight q per area.
+Sheet clamped_disc(double J, double nu, double q, double R, double ds) {
+  Sheet s;
+  const double c[3] = {0, 0, 0};
+  s.J = J;
+  s.nu = nu;
+  s.area_weight = q;
+  pmpm::sheet_disc(R, ds, c, s);
+  return s;
+}
+
 // Relax the sheet under its weight (-y) with kinetic damping (velocities zeroed at each peak of
 // the kinetic energy) until the largest unbalanced force at a free point is below tol of the
 // largest point weight. Masses are the point areas (a fictitious density: the equilibrium does
@@ -226,12 +237,7 @@ int main() {
     double err[2];
     int k = 0;
     for (double ds : {a / 8, a / 16}) {
-      Sheet s;
-      const double c[3] = {0, 0, 0};
-      s.J = J;
-      s.nu = nu;
-      s.area_weight = load;
-      pmpm::sheet_disc(a, ds, c, s);
+      Sheet s = clamped_disc(J, nu, load, a, ds);
       const int it = relax(s, 1e-9, 2000000);
       CHECK(it < 2000000);
       const double w0 = -s.x[1];
@@ -290,12 +296,8 @@ int main() {
                 ns, it, sag_ref, eps_c_ref, eps_r_ref);
     double err_old = 1;
     for (double ds : {a / 16, a / 32}) {
-      Sheet s;
+      Sheet s = clamped_disc(J5, nu, q, a, ds);
       const double c[3] = {0, 0, 0};
-      s.J = J5;
-      s.nu = nu;
-      s.area_weight = q;
-      pmpm::sheet_disc(a, ds, c, s);
       const int its = relax(s, 1e-9, 4000000);
       CHECK(its < 4000000);
       const pmpm::SheetDiscStrains st = pmpm::sheet_disc_strains(s, c, a, ds);

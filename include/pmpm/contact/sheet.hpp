@@ -30,6 +30,7 @@
 // the gradient of -sum A0 W over the points (tests/unit/test_sheet.cpp checks it by differences).
 // Each point carries a third of the mass and weight of every triangle it belongs to.
 #pragma once
+#include <cmath>
 #include <vector>
 
 namespace pmpm {
@@ -65,6 +66,9 @@ struct Sheet {
   // principal strains b1 >= b2 and tensions N1, N2, the state
   std::vector<double> biot, b, N;
   std::vector<SheetState> state;
+
+  // the in-plane wave speed sqrt(J / rho t) (the stable step's)
+  double wave_speed() const { return std::sqrt(J / area_mass); }
 };
 
 // A flat disc of radius R centred at c, in the horizontal plane y = c[1] (pmpm's vertical is y;

@@ -6,6 +6,7 @@
 #pragma once
 #include "pmpm/step/cycle.hpp"
 #include "pmpm/util/log_event.hpp"
+#include <cmath>
 #include <vector>
 
 namespace pmpm {
@@ -71,6 +72,17 @@ template <int D> const HookPhasesT<D> &Phases(const StepHook &h) {
     return h.phases3;
   else
     return h.phases;
+}
+
+// Points that every rank holds (chains, sheets) into the step's report: their kinetic energy ke,
+// wave speed c, largest squared speed v2 and load power pw, added once (on rank 0 for the power,
+// which the budget sums over ranks).
+inline void report_points(StepReport &rep, int rank, double ke, double c, double v2, double pw) {
+  rep.g2p.kinetic += ke;
+  rep.g2p.max_c = std::fmax(rep.g2p.max_c, c);
+  rep.g2p.max_v = std::fmax(rep.g2p.max_v, std::sqrt(v2));
+  rep.g2p.max_speed = rep.g2p.max_c + rep.g2p.max_v;
+  if (rank == 0) rep.g2p.weight_power += pw;
 }
 
 // The 3D sheets' forces and weight on the grid (src/step/sheets.cpp), for the static residual.
