@@ -103,6 +103,7 @@ static PetscErrorCode RunScene(double h, bool estimating, bool aside, const Judg
   PetscCall(OutputParticles(sim, "particles.h5"));
   PetscCall(OutputSeriesFinish(sim));
   PetscCall(OutputChains(sim));
+  PetscCall(OutputSheets(sim));
   PetscCall(sim.scene->write_files(sim));
   PetscCall(OutputSummary(sim, results, judge(mr)));
   PetscCall(PetscLogStagePop());

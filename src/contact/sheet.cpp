@@ -230,6 +230,95 @@ SheetDiscStrains sheet_disc_strains(const Sheet &s, const double c[3], double R,
   return out;
 }
 
+namespace {
+// Triangle t's in-plane strain and tension tensors (in e1, e2) and their reference basis Q.
+void TriangleTensors(const Sheet &s, int t, Eigen::Matrix2d &B, Eigen::Matrix2d &T, Mat32 &Q) {
+  const double *bt = &s.biot[3 * static_cast<size_t>(t)], *e = &s.basis[6 * static_cast<size_t>(t)];
+  B << bt[0], bt[2], bt[2], bt[1];
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+  eig.computeDirect(B);
+  const Eigen::Vector2d n1 = eig.eigenvectors().col(1), n2 = eig.eigenvectors().col(0);
+  T = s.N[2 * t] * n1 * n1.transpose() + s.N[2 * t + 1] * n2 * n2.transpose();
+  Q.col(0) = Eigen::Vector3d(e[0], e[1], e[2]);
+  Q.col(1) = Eigen::Vector3d(e[3], e[4], e[5]);
+}
+
+// The principal values (major first) of a 3D tensor A in the plane normal to n.
+Eigen::Vector2d InPlanePrincipal(const Eigen::Matrix3d &A, const Eigen::Vector3d &n) {
+  const Eigen::Vector3d u = n.unitOrthogonal(), w = n.cross(u);
+  Mat32 P;
+  P.col(0) = u;
+  P.col(1) = w;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+  eig.computeDirect(P.transpose() * A * P);
+  return {eig.eigenvalues()[1], eig.eigenvalues()[0]};
+}
+} // namespace
+
+void sheet_point_principal(const Sheet &s, std::vector<double> &strain,
+                           std::vector<double> &tension) {
+  std::vector<Eigen::Matrix3d> E(s.n, Eigen::Matrix3d::Zero()), T(s.n, Eigen::Matrix3d::Zero());
+  std::vector<Eigen::Vector3d> nrm(s.n, Eigen::Vector3d::Zero());
+  std::vector<double> w(s.n, 0.0);
+  for (int t = 0; t < s.nt; ++t) {
+    Eigen::Matrix2d B, N;
+    Mat32 Q;
+    TriangleTensors(s, t, B, N, Q);
+    const Eigen::Matrix3d B3 = Q * B * Q.transpose(), N3 = Q * N * Q.transpose();
+    const Eigen::Vector3d n = Q.col(0).cross(Q.col(1));
+    for (int a = 0; a < 3; ++a) {
+      const int i = s.tri[3 * static_cast<size_t>(t) + a];
+      E[i] += s.a0[t] * B3;
+      T[i] += s.a0[t] * N3;
+      // the triangles' normals in one orientation (the lattice's corner order varies)
+      nrm[i] += (n.dot(nrm[i]) < 0 ? -s.a0[t] : s.a0[t]) * n;
+      w[i] += s.a0[t];
+    }
+  }
+  strain.assign(2 * static_cast<size_t>(s.n), 0.0);
+  tension.assign(2 * static_cast<size_t>(s.n), 0.0);
+  for (int i = 0; i < s.n; ++i) {
+    if (!(w[i] > 0)) continue;
+    const Eigen::Vector3d n = nrm[i].normalized();
+    const Eigen::Vector2d e = InPlanePrincipal(E[i] / w[i], n),
+                          N = InPlanePrincipal(T[i] / w[i], n);
+    strain[2 * i] = e[0];
+    strain[2 * i + 1] = e[1];
+    tension[2 * i] = N[0];
+    tension[2 * i + 1] = N[1];
+  }
+}
+
+void sheet_major_direction(const Sheet &s, int t, double dir[3]) {
+  Eigen::Matrix2d B, N;
+  Mat32 Q;
+  TriangleTensors(s, t, B, N, Q);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+  eig.computeDirect(B);
+  const Eigen::Vector3d d = Q * eig.eigenvectors().col(1);
+  for (int k = 0; k < 3; ++k) dir[k] = d[k];
+}
+
+PeakPrincipal sheet_peak_principal(const Sheet &s) {
+  PeakPrincipal p;
+  std::vector<double> e, N;
+  sheet_point_principal(s, e, N);
+  for (int i = 0; i < s.n; ++i)
+    if (p.point < 0 || e[2 * i] > p.strain1) {
+      p.point = i;
+      p.strain1 = e[2 * i];
+    }
+  for (int t = 0; t < s.nt; ++t)
+    p.triangle_strain1 = t == 0 ? s.b[0] : std::fmax(p.triangle_strain1, s.b[2 * t]);
+  if (p.point < 0) return p;
+  const int i = p.point;
+  p.strain2 = e[2 * i + 1];
+  p.tension1 = N[2 * i];
+  p.tension2 = N[2 * i + 1];
+  for (int d = 0; d < 3; ++d) p.x[d] = s.x[3 * i + d];
+  return p;
+}
+
 double sheet_strain_along(const Sheet &s, int t, const double d[3]) {
   const double *e = &s.basis[6 * static_cast<size_t>(t)], *B = &s.biot[3 * static_cast<size_t>(t)];
   const double u = d[0] * e[0] + d[1] * e[1] + d[2] * e[2],

@@ -4,7 +4,8 @@
 // Foppl-Hencky's w0 = 0.653 a (q a / E t)^(1/3) (Hencky 1915; Fichter 1997); at any slope it is
 // the membrane of revolution that the axisymmetric catenary solves (-scene catenary -geometry
 // axisymmetric; tests/test_membrane_axisymmetric.py), which has the same law. Reports the sag at
-// the centre, the centre strain and the rim's radial strain (sheet_disc_strains).
+// the centre, the centre strain and the rim's radial strain (sheet_disc_strains), the peak
+// principal strains (sheet_peak_principal), and writes the sheet as a surface (sheet_output.cpp).
 #include "pmpm/io/output.hpp"
 #include "pmpm/scenes/scene_util.hpp"
 #include "pmpm/util/options.hpp"
@@ -96,6 +97,7 @@ public:
     const double Et = s.J * (1 - s.nu * s.nu);
     int wrinkled = 0;
     for (SheetState st : s.state) wrinkled += st != SheetState::Taut;
+    const PeakPrincipal p = sheet_peak_principal(s);
     const char *sep = ",\n    ";
     json = json_kv("radius", radius_) + sep + json_kv("thickness", t_) + sep +
            json_kv("weight_per_area", s.area_weight) + sep + json_kv("axial_stiffness", s.J) + sep +
@@ -104,7 +106,15 @@ public:
            json_kv("sag_foppl_hencky_nu03",
                    0.653 * radius_ * std::cbrt(s.area_weight * radius_ / Et)) +
            sep + json_kv("strain_centre", e.centre) + sep + json_kv("strain_rim", e.rim) + sep +
-           json_kv("triangles_not_taut", double(wrinkled));
+           json_kv("triangles_not_taut", double(wrinkled)) + sep +
+           // the design answer's form (sheet_peak_principal): the largest major principal strain
+           // of a point, the minor strain there (the biaxial state), the tensions and where; the
+           // largest of a single triangle
+           json_kv("peak_strain_major", p.strain1) + sep + json_kv("peak_strain_minor", p.strain2) +
+           sep + json_kv("peak_tension_major", p.tension1) + sep +
+           json_kv("peak_tension_minor", p.tension2) + sep + "\"peak_at\": [" + json_num(p.x[0]) +
+           ", " + json_num(p.x[1]) + ", " + json_num(p.x[2]) + "]" + sep +
+           json_kv("peak_strain_triangle", p.triangle_strain1);
     PetscFunctionReturn(0);
   }
 };

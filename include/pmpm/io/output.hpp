@@ -24,6 +24,8 @@ PetscErrorCode OutputSummary(Simulation &sim, const std::string &results,
                              const std::string &design);
 // Membrane chains: DIR/chain_<name>.csv (profile), DIR/chains.h5 + chains.xmf (polylines).
 PetscErrorCode OutputChains(Simulation &sim);
+// 3D sheets: DIR/sheet_<name>.csv (points), DIR/sheets.h5 + sheets.xmf (triangulated surfaces).
+PetscErrorCode OutputSheets(Simulation &sim);
 // The "chains" and "contact" blocks of summary.json (empty without chains).
 std::string ChainSummaryJson(const Simulation &sim);
 // Rename DIR/name.tmp to DIR/name on rank 0.
