@@ -440,14 +440,14 @@ struct ChainArrayWriter {
 // ... and read back, each of the length this run's chain has (else a damaged checkpoint).
 struct ChainArrayReader {
   PetscViewer v;
-  const Chain &ch;
+  const std::string &who; // "chain <name>", "sheet <name>"
   const std::string &file;
   PetscErrorCode read(const char *name, size_t n, std::vector<double> &src) const {
     PetscFunctionBeginUser;
     PetscCall(CheckpointReadArray(v, name, src));
     PetscCheck(src.size() == n, PetscObjectComm((PetscObject)v), PETSC_ERR_FILE_UNEXPECTED,
-               "-restart %s: damaged checkpoint (chain %s, %s: %d values for %d)", file.c_str(),
-               ch.name.c_str(), name, (int)src.size(), (int)n);
+               "-restart %s: damaged checkpoint (%s, %s: %d values for %d)", file.c_str(),
+               who.c_str(), name, (int)src.size(), (int)n);
     PetscFunctionReturn(0);
   }
   PetscErrorCode operator()(const char *name, std::vector<double> &a) const {
@@ -568,6 +568,22 @@ PetscErrorCode WriteChains(Simulation &sim, PetscViewer v) {
     PetscCall(ch.checkpoint_fields(AttrWriter{v, g}));
     PetscCall(PetscViewerHDF5PushGroup(v, g));
     PetscCall(ch.checkpoint_arrays(ChainArrayWriter{v}));
+    PetscCall(PetscViewerHDF5PopGroup(v));
+  }
+  PetscFunctionReturn(0);
+}
+
+// /sheets/<k>: their positions and velocities (every rank holds them alike).
+PetscErrorCode WriteSheets(Simulation &sim, PetscViewer v) {
+  PetscFunctionBeginUser;
+  for (size_t k = 0; k < sim.sheets.size(); ++k) {
+    Sheet &sh = sim.sheets[k];
+    char g[32];
+    snprintf(g, sizeof(g), "/sheets/%d", (int)k);
+    PetscCall(PutString(v, g, "name", sh.name));
+    PetscCall(PutInt(v, g, "points", sh.n));
+    PetscCall(PetscViewerHDF5PushGroup(v, g));
+    PetscCall(sh.checkpoint_arrays(ChainArrayWriter{v}));
     PetscCall(PetscViewerHDF5PopGroup(v));
   }
   PetscFunctionReturn(0);
@@ -824,8 +840,31 @@ PetscErrorCode ReadChain(Simulation &sim, PetscViewer v, const std::string &file
              F, (int)k, cname.c_str(), (int)npts, ch.name.c_str(), ch.n);
   PetscCall(ch.checkpoint_fields(AttrReader{v, g, file}));
   PetscCall(PetscViewerHDF5PushGroup(v, g));
-  PetscCall(ch.checkpoint_arrays(ChainArrayReader{v, ch, file}));
+  PetscCall(ch.checkpoint_arrays(ChainArrayReader{v, "chain " + ch.name, file}));
   PetscCall(PetscViewerHDF5PopGroup(v));
+  PetscFunctionReturn(0);
+}
+
+// /sheets/<k>: the same sheet (name, points), its positions and velocities; its forces, strains
+// and normals recomputed from them (as after a step).
+PetscErrorCode ReadSheet(Simulation &sim, PetscViewer v, const std::string &file, size_t k) {
+  Sheet &sh = sim.sheets[k];
+  char g[32];
+  std::string name;
+  PetscInt npts;
+  PetscFunctionBeginUser;
+  snprintf(g, sizeof(g), "/sheets/%d", (int)k);
+  PetscCall(GetString(v, g, "name", file, name));
+  PetscCall(GetInt(v, g, "points", file, &npts));
+  PetscCheck(name == sh.name && npts == sh.n, sim.comm, PETSC_ERR_USER_INPUT,
+             "-restart %s: the checkpoint's sheet %d is %s with %d points, this run's %s with "
+             "%d (restart with the options files of the run that wrote it)",
+             file.c_str(), (int)k, name.c_str(), (int)npts, sh.name.c_str(), sh.n);
+  PetscCall(PetscViewerHDF5PushGroup(v, g));
+  PetscCall(sh.checkpoint_arrays(ChainArrayReader{v, "sheet " + sh.name, file}));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  sheet_update_forces(sh);
+  sheet_normals(sh);
   PetscFunctionReturn(0);
 }
 
@@ -860,6 +899,7 @@ PetscErrorCode CheckpointWrite(Simulation &sim, bool in_stage) {
   PetscCall(WriteRunArrays(sim, v));
   PetscCall(WriteParticles(sim, v));
   PetscCall(WriteChains(sim, v));
+  PetscCall(WriteSheets(sim, v));
   PetscCall(WriteFrames(sim, v));
   // the scene's own state
   PetscCall(PutString(v, "/scene", "name", sim.set.scene));
@@ -897,6 +937,7 @@ PetscErrorCode CheckpointRead(Simulation &sim, const std::string &file) {
   if (sim.set.dim == 3) PetscCall(ExtrudeLoads(sim)); // the table just read, per z spacing
   PetscCall(ReadParticles(sim, v, file, ranks, moved));
   for (size_t k = 0; k < sim.chains.size(); ++k) PetscCall(ReadChain(sim, v, file, k));
+  for (size_t k = 0; k < sim.sheets.size(); ++k) PetscCall(ReadSheet(sim, v, file, k));
   PetscCall(ReadFrames(sim, v, file));
   // the scene's own state
   PetscCall(PetscViewerHDF5PushGroup(v, "/scene"));

@@ -27,9 +27,6 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
       {s.solver != "relaxation", "-solver newton (use -solver relaxation)"},
       {s.geometry != Geometry::PlaneStrain, "-geometry axisymmetric"},
       {!sim.model.chain_specs.empty(), "membrane chains"},
-      {!sim.sheets.empty() &&
-           (s.checkpoint_every > 0 || s.checkpoint_stage_end || !s.restart.empty()),
-       "checkpoints or a restart with a sheet (its points are not checkpointed yet)"},
   };
   for (const auto &r : refusals)
     PmpmCheckInput(!r.refused, sim.comm, PETSC_ERR_SUP, "-dim 3 does not run %s yet", r.what);

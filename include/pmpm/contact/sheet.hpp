@@ -71,6 +71,14 @@ struct Sheet {
 
   // the in-plane wave speed sqrt(J / rho t) (the stable step's)
   double wave_speed() const { return std::sqrt(J / area_mass); }
+
+  // The checkpointed state (checkpoint.cpp, /sheets/<k> datasets): f(name, array) for the
+  // positions and velocities; the lattice and its reference come from the options, the forces,
+  // strains and normals from x (sheet_update_forces, sheet_normals).
+  template <class F> int checkpoint_arrays(F &&f) {
+    int err = f("x", x);
+    return err ? err : f("v", v);
+  }
 };
 
 // A flat disc of radius R centred at c, in the horizontal plane y = c[1] (pmpm's vertical is y;
