@@ -82,6 +82,34 @@ void sheet_disc(double R, double ds, const double c[3], Sheet &s) {
   sheet_reference(s);
 }
 
+void sheet_rectangle(double x0, double dx, int nx, double z0, double dz, int nz, double y,
+                     Sheet &s) {
+  s.n = nx * nz;
+  s.x0.assign(3 * static_cast<size_t>(s.n), 0.0);
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < nz; ++j) {
+      double *X = &s.x0[3 * static_cast<size_t>(i * nz + j)];
+      X[0] = x0 + i * dx;
+      X[1] = y;
+      X[2] = z0 + j * dz;
+    }
+  s.pinned.assign(s.n, 0);
+  s.tri.clear();
+  for (int i = 0; i + 1 < nx; ++i)
+    for (int j = 0; j + 1 < nz; ++j) {
+      const int a = i * nz + j, b = a + nz, c = a + 1, d = b + 1; // (i,j) (i+1,j) (i,j+1) (i+1,j+1)
+      if ((i + j) % 2 == 0)
+        s.tri.insert(s.tri.end(), {a, b, d, a, d, c});
+      else
+        s.tri.insert(s.tri.end(), {a, b, c, b, d, c});
+    }
+  s.nt = static_cast<int>(s.tri.size()) / 3;
+  s.x = s.x0;
+  s.v.assign(s.x0.size(), 0.0);
+  s.f.assign(s.x0.size(), 0.0);
+  sheet_reference(s);
+}
+
 void sheet_reference(Sheet &s) {
   s.a0.assign(s.nt, 0.0);
   s.dinv.assign(4 * static_cast<size_t>(s.nt), 0.0);

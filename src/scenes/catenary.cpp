@@ -13,6 +13,12 @@
 // axis stays there, its rim is pinned. It reports the sag and the strains at the centre and the
 // rim; its reference is the membrane of revolution solved as a boundary-value problem
 // (tests/test_membrane_axisymmetric.py), not the catenary.
+// Under -dim 3 -depth D the catenary is extruded: a strip of 3D sheet (sheet.hpp), a rectangle
+// lattice of the chain's spacing (one point per cell) over the span and across the depth (its
+// points at the cells' centres in z, so the strip is D - h wide), pinned along both supports and
+// held in z along its two free edges (rollers: the plane strain of the 2D chain, b_z = 0, so that
+// N_x = J b_x as the chain's T = J eps). Its answers are the 2D ones, per unit width.
+#include "pmpm/contact/sheet.hpp"
 #include "pmpm/util/options.hpp"
 #include "pmpm/io/output.hpp"
 #include "pmpm/scenes/scene_util.hpp"
@@ -43,13 +49,16 @@ CatenaryExact SolveCatenary(double l, double L0, double w, double J) {
 } // namespace
 
 class CatenaryScene final : public Scene {
-  double span_ = 10, t_ = 0.0015, off_[DIM] = {0, 0};
+  double span_ = 10, t_ = 0.0015, off_[DIM] = {0, 0}, width_ = 0;
+  int nx3_ = 0, nz3_ = 0; // -dim 3: the strip's lattice (sheet_rectangle)
   CatenaryExact ex_{}, ex2_{};
   double y0_ = 0, y2_ = 0, drop_ = 0;
   bool axi_ = false; // -geometry axisymmetric: a circular membrane
   PetscBool second_ = PETSC_FALSE;
 
 public:
+  bool extrudes() const override { return true; } // -dim 3: a strip of 3D sheet
+
   PetscErrorCode setup(Simulation &sim) override {
     PetscInt n = DIM;
     PetscBool drop_set = PETSC_FALSE;
@@ -83,6 +92,8 @@ public:
     PmpmCheckInput(!axi_ || (!second_ && off_[0] == 0), sim.comm, PETSC_ERR_ARG_INCOMP,
                    "-geometry axisymmetric: the catenary is one circular membrane centred on the "
                    "axis (no -catenary_second, no x in -catenary_offset)");
+    PmpmCheckInput(!second_ || sim.set.dim == 2, sim.comm, PETSC_ERR_SUP,
+                   "-catenary_second: under -dim 3 the catenary is one strip of sheet");
     ChainSpec cs;
     cs.name = "membrane";
     cs.material = "membrane";
@@ -137,8 +148,113 @@ public:
       c2.line = {off_[0], y2_, off_[0] + span_, y2_};
       sim.model.chain_specs.push_back(c2);
     }
-    sim.model.chain_specs.push_back(cs);
     for (int f = 0; f < 2 * DIM; ++f) sim.model.face[f] = FaceBC::Free;
+    if (sim.set.dim == 3) {
+      PetscCall(StripSetup(sim, probe, cs));
+      PetscFunctionReturn(0);
+    }
+    sim.model.chain_specs.push_back(cs);
+    PetscFunctionReturn(0);
+  }
+
+  // -dim 3: the strip of sheet over the chain's line, across the depth.
+  PetscErrorCode StripSetup(Simulation &sim, const Chain &probe, const ChainSpec &cs) {
+    PetscFunctionBeginUser;
+    const double h = sim.set.h;
+    PmpmCheckInput(sim.set.depth >= 2 * h - 1e-9 * h, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-dim 3: -depth %g m is the catenary strip's width plus a cell: give at least "
+                   "two cells (%g m)",
+                   sim.set.depth, 2 * h);
+    const int linear = MembraneLawId<LinearMembrane>, field = MembraneLawId<TensionOnlyMembrane>;
+    PmpmCheckInput(probe.law.kind == linear || probe.law.kind == field, sim.comm, PETSC_ERR_SUP,
+                   "-mat_membrane_law %s: a 3D sheet takes linear or tension_only (no "
+                   "plane-stress yield yet)",
+                   MembraneLaws::names[probe.law.kind]);
+    // uniaxial J = E t is the sheet's E t / (1 - nu^2) only when nu = 0
+    PmpmCheckInput(probe.stiffness == StiffnessKind::PlaneStrain || probe.nu == 0, sim.comm,
+                   PETSC_ERR_SUP,
+                   "-mat_membrane_axial_stiffness uniaxial with -mat_membrane_nu %g: a 3D sheet "
+                   "is biaxial (J = E t / (1 - nu^2)); use plane_strain, or nu = 0",
+                   probe.nu);
+    // one point per cell along the span (the shipped -chain_spacing 1), at the cells' centres
+    // in z across the depth
+    nx3_ = static_cast<int>(std::ceil(span_ / h - 1e-9)) + 1;
+    nz3_ = static_cast<int>(std::llround(sim.set.depth / h));
+    width_ = (nz3_ - 1) * h;
+    Sheet st;
+    st.law = probe.law.kind == field ? SheetLaw::TensionField : SheetLaw::Linear;
+    st.J = probe.law.J;
+    st.nu = probe.nu;
+    st.area_mass = probe.line_mass;
+    st.area_weight = probe.line_weight;
+    sheet_rectangle(cs.line[0], span_ / (nx3_ - 1), nx3_, 0.5 * h, h, nz3_, cs.line[1], st);
+    st.held.assign(st.n, 0);
+    for (int i = 0; i < nx3_; ++i)
+      for (int j = 0; j < nz3_; ++j) {
+        const int p = i * nz3_ + j;
+        st.pinned[p] = i == 0 || i == nx3_ - 1;
+        if (j == 0 || j == nz3_ - 1) st.held[p] = 1 << 2; // z held: a roller
+      }
+    sheet_normals(st);
+    sim.sheets.push_back(std::move(st));
+    PetscFunctionReturn(0);
+  }
+
+  // -dim 3: the strip's answers per unit width, read as the chain's (below): the mid-span
+  // column(s) of points, the x strain of the triangles in the two columns of triangles around
+  // mid-span and extrapolated from the first two at each support, the supports' reactions.
+  PetscErrorCode StripResults(Simulation &sim, std::string &json) {
+    PetscFunctionBeginUser;
+    const Sheet &s = sim.sheets.front();
+    const int nx = nx3_, nz = nz3_;
+    const double ds = span_ / (nx - 1), ex[3] = {1, 0, 0}, ez[3] = {0, 0, 1};
+    auto column_y = [&](int i) {
+      double y = 0;
+      for (int j = 0; j < nz; ++j) y += s.x[3 * (i * nz + j) + 1];
+      return y / nz;
+    };
+    const double ymid = 0.5 * (column_y((nx - 1) / 2) + column_y(nx / 2));
+    // per column of triangles k (between point columns k and k + 1): mean x and z strains, N_x
+    std::vector<double> ex_k(nx - 1, 0.0), ez_k(nx - 1, 0.0), N_k(nx - 1, 0.0), cnt(nx - 1, 0.0);
+    for (int t = 0; t < s.nt; ++t) {
+      double cx = 0;
+      for (int a = 0; a < 3; ++a) cx += s.x0[3 * s.tri[3 * t + a]] / 3;
+      const int k = std::clamp(static_cast<int>(std::floor((cx - s.x0[0]) / ds)), 0, nx - 2);
+      const double bx = sheet_strain_along(s, t, ex), bz = sheet_strain_along(s, t, ez);
+      ex_k[k] += bx;
+      ez_k[k] += bz;
+      N_k[k] += s.J * (bx + s.nu * bz);
+      cnt[k] += 1;
+    }
+    for (int k = 0; k + 1 < nx; ++k) {
+      ex_k[k] /= cnt[k];
+      ez_k[k] /= cnt[k];
+      N_k[k] /= cnt[k];
+    }
+    const int k0 = std::max(0, nx / 2 - 1), k1 = std::min(nx - 2, (nx - 1) / 2);
+    const double eps_mid = 0.5 * (ex_k[k0] + ex_k[k1]), T_mid = 0.5 * (N_k[k0] + N_k[k1]);
+    auto end = [&](int a, int b) { return 1.5 * ex_k[a] - 0.5 * ex_k[b]; };
+    const double eps_sup = 0.5 * (end(0, 1) + end(nx - 2, nx - 3));
+    double ez_max = 0;
+    for (int k = 0; k + 1 < nx; ++k) ez_max = std::fmax(ez_max, std::fabs(ez_k[k]));
+    // the support at the start: the sheet's pull on its pinned points and their own weight
+    double Hs = 0, Vs = 0;
+    for (int j = 0; j < nz; ++j) {
+      Hs += s.f[3 * j];
+      Vs += -s.f[3 * j + 1] + s.weight[j];
+    }
+    const char *sep = ",\n    ";
+    json = json_kv("span", span_) + sep + json_kv("width", width_) + sep +
+           json_kv("thickness", t_) + sep + json_kv("weight_per_length", s.area_weight) + sep +
+           json_kv("axial_stiffness", s.J) + sep + json_kv("points", double(s.n)) + sep +
+           json_kv("triangles", double(s.nt)) + sep + json_kv("sag", y0_ - ymid) + sep +
+           json_kv("sag_exact", ex_.sag) + sep + json_kv("strain_mid", eps_mid) + sep +
+           json_kv("strain_mid_exact", ex_.strain_mid) + sep + json_kv("strain_support", eps_sup) +
+           sep + json_kv("strain_support_exact", ex_.strain_support) + sep +
+           json_kv("tension_mid", T_mid) + sep + json_kv("tension_mid_exact", ex_.tension_mid) +
+           sep + json_kv("horizontal_reaction", Hs / width_) + sep +
+           json_kv("vertical_reaction", Vs / width_) + sep +
+           json_kv("vertical_reaction_exact", ex_.V) + sep + json_kv("strain_across_max", ez_max);
     PetscFunctionReturn(0);
   }
 
@@ -146,6 +262,10 @@ public:
 
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     PetscFunctionBeginUser;
+    if (sim.set.dim == 3) {
+      PetscCall(StripResults(sim, json));
+      PetscFunctionReturn(0);
+    }
     const Chain &c = sim.chains.back(); // the membrane (the liner, if any, is below it)
     if (axi_) {
       // the centre (point 0, on the axis; its segment's strain, isotropic there) and the rim

@@ -42,6 +42,7 @@ PetscErrorCode ZeroParticleVelocities(Simulation &sim) {
     for (PetscInt q = 0; q < P.n * D * D; ++q) P.B[q] = 0.0;
   PetscCall(ParticlesRestoreView(sim.parts, P));
   for (Chain &c : sim.chains) std::fill(c.v.begin(), c.v.end(), 0.0);
+  for (Sheet &sh : sim.sheets) std::fill(sh.v.begin(), sh.v.end(), 0.0);
   PetscFunctionReturn(0);
 }
 

@@ -46,8 +46,13 @@ void P2GSheet(const Sheet &s, const LoadT<3> &load, const GridT<3> &g, const Gri
     if (s.pinned[i] || !g.owns_cell(c)) continue;
     PointWeights(s, i, G, W);
     const double m = s.mass[i], wt = load.factor * s.weight[i];
-    double fext[3];
-    for (int d = 0; d < 3; ++d) fext[d] = wt * load.gdir[d];
+    // a held component's forces meet its support's reaction: none reach the grid
+    double fext[3], fint[3];
+    for (int d = 0; d < 3; ++d) {
+      const bool hold = !s.held.empty() && (s.held[i] >> d & 1);
+      fext[d] = hold ? 0.0 : wt * load.gdir[d];
+      fint[d] = hold ? 0.0 : s.f[3 * i + d];
+    }
     for (int k = 0; k < NN; ++k) {
       const double w = W.w[k];
       if (w == 0.0) continue;
@@ -55,7 +60,7 @@ void P2GSheet(const Sheet &s, const LoadT<3> &load, const GridT<3> &g, const Gri
       nb[G3::M] += w * m;
       for (int d = 0; d < 3; ++d) {
         nb[G3::P + d] += w * m * s.v[3 * i + d];
-        nb[G3::F + d] += w * (s.f[3 * i + d] + fext[d]);
+        nb[G3::F + d] += w * (fint[d] + fext[d]);
         nb[G3::FEXT + d] += w * fext[d];
       }
     }
@@ -105,6 +110,10 @@ void G2PSheet(const Sheet &s, const GridT<3> &g, const GridViewT<3> &G, double d
     for (int d = 0; d < 3; ++d) {
       out[d] = x[d] + dt * vg[d];
       out[3 + d] = (1.0 - pic) * (v[d] + dt * ag[d]) + pic * vg[d];
+      if (!s.held.empty() && (s.held[i] >> d & 1)) { // a roller: this component stays
+        out[d] = x[d];
+        out[3 + d] = 0.0;
+      }
     }
   }
 }

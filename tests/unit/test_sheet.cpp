@@ -197,6 +197,45 @@ int main() {
     CHECK(fin < 1e-10 * frim);
   }
 
+  // 2b. the rectangle lattice (sheet_rectangle): 4 x 3 points, its area, and a rotated uniaxial
+  //     stretch strains every triangle alike, with no net force at its inner points and the
+  //     point values (sheet_point_principal) the triangles'
+  {
+    Sheet s;
+    s.J = J;
+    s.nu = nu;
+    pmpm::sheet_rectangle(0.5, 0.25, 4, -1.0, 0.5, 3, 2.0, s);
+    CHECK(s.n == 12 && s.nt == 2 * 3 * 2);
+    double area = 0;
+    for (double a : s.a0) area += a;
+    CHECK_CLOSE(area, 0.75 * 1.0, 1e-12);
+    CHECK_CLOSE(s.x0[3 * 7], 0.5 + 2 * 0.25, 1e-15); // point (i, j) = (2, 1) is i nz + j
+    CHECK_CLOSE(s.x0[3 * 7 + 2], -1.0 + 0.5, 1e-15);
+    const double c[3] = {0.5, 2.0, -1.0}, u[3] = {0.6, 0.0, 0.8}, stretch = 0.03;
+    double R[9], A[9];
+    rotation(u, 0.4, R);
+    const double Sx[9] = {1 + stretch, 0, 0, 0, 1, 0, 0, 0, 1};
+    matmul(R, Sx, A);
+    deform(s, c, A);
+    pmpm::sheet_update_forces(s);
+    for (int t = 0; t < s.nt; ++t) {
+      CHECK_CLOSE(s.b[2 * t], stretch, 1e-12);
+      CHECK_CLOSE(s.N[2 * t], J * stretch, 1e-9 * J);
+    }
+    for (int i : {4, 7}) // the inner points (1, 1) and (2, 1)
+      for (int d = 0; d < 3; ++d) CHECK(std::fabs(s.f[3 * i + d]) < 1e-10 * J * stretch);
+    std::vector<double> e, N;
+    pmpm::sheet_point_principal(s, e, N);
+    for (int i = 0; i < s.n; ++i) {
+      CHECK_CLOSE(e[2 * i], stretch, 1e-12);
+      CHECK_CLOSE(e[2 * i + 1], 0.0, 1e-12);
+      CHECK_CLOSE(N[2 * i + 1], nu * J * stretch, 1e-9 * J);
+    }
+    const pmpm::PeakPrincipal p = pmpm::sheet_peak_principal(s);
+    CHECK_CLOSE(p.strain1, stretch, 1e-12);
+    CHECK_CLOSE(p.triangle_strain1, stretch, 1e-12);
+  }
+
   // 3. forces = -grad U
   for (SheetLaw law : {SheetLaw::Linear, SheetLaw::TensionField}) {
     Sheet s;

@@ -59,6 +59,7 @@ struct Sheet {
   std::vector<double> nrm; // unit normal per point (the mean of its triangles'), sheet_normals
   std::vector<double> area, mass, weight; // a third of each adjacent triangle's reference area
   std::vector<char> pinned;               // held fixed (a clamped rim)
+  std::vector<char> held; // per point, bit d: component d held (a roller; empty: none)
   // triangles: corners (3 per triangle), reference area, the inverse of the reference edge
   // matrix D = [X1 - X0, X2 - X0] in e1, e2 (row-major 2 x 2), the basis e1, e2 (6 per triangle)
   int nt = 0;
@@ -87,6 +88,12 @@ struct Sheet {
 // (ring K) is pinned. Points and triangles in a fixed order (rank-independent). Sets x = x0, v = 0
 // and the reference (sheet_reference); the law and material constants are the caller's.
 void sheet_disc(double R, double ds, const double c[3], Sheet &s);
+// A flat rectangle in the horizontal plane y = y: points at x = x0 + i dx (i = 0 .. nx - 1) and
+// z = z0 + j dz (j = 0 .. nz - 1), point (i, j) numbered i nz + j, each lattice square split into
+// two triangles along its diagonal, the diagonals alternating square by square (no direction
+// preferred). Nothing pinned. Sets x = x0, v = 0 and the reference (sheet_reference).
+void sheet_rectangle(double x0, double dx, int nx, double z0, double dz, int nz, double y,
+                     Sheet &s);
 // The reference geometry from x0: areas, D^-1, bases; point areas, masses and weights.
 void sheet_reference(Sheet &s);
 // Strains, tensions and the internal point forces f from the current positions x.
