@@ -89,4 +89,44 @@ bool stack_friction(int nb, const double *m, double *vt, const double *cap, doub
 void stack_friction_pgs(int nb, const double *m, double *vt, const double *cap, double *S,
                         FaceState *state, int sweeps);
 
+// Three dimensions (the 3D sheet's faces): the same stack along a unit normal n (3 components);
+// a body's tangential velocity vt_k is a vector in the plane normal to n, each face's friction
+// impulse S_k a vector there too, and Coulomb's law a cone, |S_k| <= C_k. The normal step is the
+// one above (scalar along n). The tangential step minimises the kinetic energy sum_k m_k
+// |vt_k'|^2 / 2 over |S_k| <= C_k (maximal dissipation); its dual is
+//   min_w  sum_k m_k / 2 |w_k - vt_k|^2 + sum_k C_k |w_{k+1} - w_k|,
+// strictly convex, whose minimiser is Coulomb's law: a face sticks (w_k = w_{k+1}) while its
+// impulse is inside the cone, and slides with S_k = C_k (w_{k+1} - w_k) / |w_{k+1} - w_k| on
+// the lower body otherwise, the impulse along the sliding and opposing it. Solved by enumerating
+// the faces' states (stick or slide; free faces split the stack as in 2D) with the fewest slides
+// first: stuck faces join bodies into clusters, and the clusters' velocities minimise the smooth
+// energy above with every sliding face's velocity jump nonzero, by Newton's method with a line
+// search (quadratic convergence; a light sheet between heavy bodies is a small, well-posed
+// system, not a slow iteration). A state is accepted when every sliding face's jump stays away
+// from zero and every stuck face's impulse is inside its cone, up to round-off. Should none be,
+// projected block Gauss-Seidel (each face's impulse projected on its disc) is used instead.
+struct StackFaceResult3 {
+  double normal = 0;                // as StackFaceResult
+  double tangential[3] = {0, 0, 0}; // friction impulse on the LOWER body (the upper gets minus it)
+  bool contact = false, slip = false;
+};
+
+// nb bodies (1 <= nb <= 8), masses m[nb] > 0, velocities v[3*nb] (in: trial, out: new),
+// faces[nb-1], res[nb-1] (out); n the unit normal from body 0 toward body nb-1. A body whose
+// velocity is unchanged keeps its input bits. fallback as in 2D. Throws std::invalid_argument if
+// nb is outside 1 .. 8.
+void contact_stack3(int nb, const double *m, double *v, const StackFace *faces, const double n[3],
+                    StackFaceResult3 *res, bool *fallback = nullptr);
+
+// The tangential step alone (exposed for testing): vt[2*nb] (in: trial tangential velocities in
+// any orthonormal basis of the plane, out: new), cap[nb-1] as stack_friction's, S[2*nb-2] (out)
+// the impulses on the lower bodies, state[nb-1] (out, may be null: Stick, SlipPlus for a sliding
+// face, Free). Returns true if the enumeration found a consistent state, false if the fallback
+// was used.
+bool stack_friction_cone(int nb, const double *m, double *vt, const double *cap, double *S,
+                         FaceState *state);
+// The fallback alone: projected block Gauss-Seidel, at most `sweeps` sweeps.
+void stack_friction_cone_pgs(int nb, const double *m, double *vt, const double *cap, double *S,
+                             FaceState *state, int sweeps);
+
 } // namespace pmpm
