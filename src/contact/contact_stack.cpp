@@ -93,49 +93,6 @@ bool solve_group(int b0, int b1, const double *m, const double *vt, const double
   }
 }
 
-// The normal step: blocks joined by bilateral faces, then pool-adjacent-violators over the
-// blocks (contact_stack.hpp); wn the new normal velocities, res[k].normal and .contact per face.
-template <class Result>
-void stack_normal(int nb, const double *m, const double *vn, const StackFace *faces, double *wn,
-                  Result *res) {
-  int first[kMax], last[kMax], nblk = 0;
-  double M[kMax], P[kMax], V[kMax];
-  for (int i = 0; i < nb;) {
-    int j = i;
-    double mass = m[i], mom = m[i] * vn[i];
-    while (j < nb - 1 && faces[j].type != FaceType::Contact) {
-      ++j;
-      mass += m[j];
-      mom += m[j] * vn[j];
-    }
-    first[nblk] = i;
-    last[nblk] = j;
-    M[nblk] = mass;
-    P[nblk] = mom;
-    V[nblk] = i == j ? vn[i] : mom / mass;
-    ++nblk;
-    while (nblk >= 2 && V[nblk - 2] > V[nblk - 1]) { // the lower block runs into the upper one
-      const int b = nblk - 2;
-      last[b] = last[b + 1];
-      M[b] += M[b + 1];
-      P[b] += P[b + 1];
-      V[b] = P[b] / M[b];
-      --nblk;
-    }
-    i = j + 1;
-  }
-  for (int b = 0; b < nblk; ++b) {
-    double N = 0;
-    for (int k = first[b]; k <= last[b]; ++k) {
-      wn[k] = V[b];
-      if (k == nb - 1) break;
-      N += m[k] * (vn[k] - V[b]);
-      res[k].contact = k < last[b];
-      res[k].normal = k < last[b] ? N : 0.0;
-    }
-  }
-}
-
 } // namespace
 
 void stack_friction_pgs(int nb, const double *m, double *vt, const double *cap, double *S,
@@ -210,7 +167,43 @@ void contact_stack(int nb, const double *m, double *v, const StackFace *faces, c
     vt[i] = v[2 * i] * t[0] + v[2 * i + 1] * t[1];
   }
 
-  stack_normal(nb, m, vn, faces, wn, res);
+  // Normal: blocks joined by bilateral faces, then pool-adjacent-violators over the blocks.
+  int first[kMax], last[kMax], nblk = 0;
+  double M[kMax], P[kMax], V[kMax];
+  for (int i = 0; i < nb;) {
+    int j = i;
+    double mass = m[i], mom = m[i] * vn[i];
+    while (j < nb - 1 && faces[j].type != FaceType::Contact) {
+      ++j;
+      mass += m[j];
+      mom += m[j] * vn[j];
+    }
+    first[nblk] = i;
+    last[nblk] = j;
+    M[nblk] = mass;
+    P[nblk] = mom;
+    V[nblk] = i == j ? vn[i] : mom / mass;
+    ++nblk;
+    while (nblk >= 2 && V[nblk - 2] > V[nblk - 1]) { // the lower block runs into the upper one
+      const int b = nblk - 2;
+      last[b] = last[b + 1];
+      M[b] += M[b + 1];
+      P[b] += P[b + 1];
+      V[b] = P[b] / M[b];
+      --nblk;
+    }
+    i = j + 1;
+  }
+  for (int b = 0; b < nblk; ++b) {
+    double N = 0;
+    for (int k = first[b]; k <= last[b]; ++k) {
+      wn[k] = V[b];
+      if (k == nb - 1) break;
+      N += m[k] * (vn[k] - V[b]);
+      res[k].contact = k < last[b];
+      res[k].normal = k < last[b] ? N : 0.0;
+    }
+  }
 
   // Tangential: the friction box QP over the capacities.
   double cap[kMax], S[kMax];
@@ -542,7 +535,25 @@ void contact_stack3(int nb, const double *m, double *v, const StackFace *faces, 
     vt[2 * i] = x.dot(t1);
     vt[2 * i + 1] = x.dot(t2);
   }
-  stack_normal(nb, m, vn, faces, wn, res);
+  // the normal step is the 2D kernel's on the normal components alone (no tangential motion,
+  // no friction): one implementation of the stack's normal contact for both dimensions
+  {
+    double v2[2 * kMax];
+    StackFace f2[kMax];
+    StackFaceResult r2[kMax];
+    for (int i = 0; i < nb; ++i) {
+      v2[2 * i] = 0;
+      v2[2 * i + 1] = vn[i];
+    }
+    for (int k = 0; k + 1 < nb; ++k) f2[k] = {faces[k].type, 0.0, 0.0};
+    const double n2[2] = {0, 1};
+    contact_stack(nb, m, v2, f2, n2, r2);
+    for (int i = 0; i < nb; ++i) wn[i] = v2[2 * i + 1];
+    for (int k = 0; k + 1 < nb; ++k) {
+      res[k].normal = r2[k].normal;
+      res[k].contact = r2[k].contact;
+    }
+  }
   double cap[kMax], S[2 * kMax];
   FaceState st[kMax];
   for (int k = 0; k < nb - 1; ++k) {
