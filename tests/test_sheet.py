@@ -19,18 +19,19 @@ triangle's largest strain is no smaller (the lattice's scatter, +4.4 % and +2.3 
 The outputs: sheets.h5 holds the lattice (points, triangles) whose displacements give the sag,
 whose triangle strains give the centre strain of summary.json to 1e-12, and whose point strains
 give the peak; sheets.xmf names those datasets with their shapes; sheet_membrane.csv has a row
-per point. On 2 ranks (the sheet crosses x = 0) and 4 ranks (2 x 2 x 1: it crosses x = 0 and
+per point; scripts/plot_sheet.py draws its two PNGs from them. On 2 ranks (the sheet crosses x = 0) and 4 ranks (2 x 2 x 1: it crosses x = 0 and
 z = the centre) the h = 1 m answers equal the one-rank run's to 1e-8 (measured 5e-14; the points
 are shared by an allreduce, the nodal sums' order changes). On 2: checkpoints every 2,000 steps
 leave sheets.h5 bit for bit, and a restart from step 2,000 ends at the same step, bit for bit on
 1 rank and within 1e-10 of the radius on 2.
 """
+import subprocess
+import sys
+from pathlib import Path
 from xml.etree import ElementTree
 
 import h5py
 import numpy as np
-import sys
-from pathlib import Path
 
 from membrane_bvp import membrane_bvp
 from pmpmtest import Checks, run, summary
@@ -79,6 +80,12 @@ def check_files(c, h, o, r):
     rows = np.loadtxt(o / "sheet_membrane.csv", delimiter=",", skiprows=1)
     c.check(f"h = {h}: sheet_membrane.csv, a row per point", rows.shape == (r["points"], 14) and
             np.abs(rows[:, 9] - pe1).max() < 1e-12 * abs(pe1).max())
+    # the plots (scripts/plot_sheet.py) from these files
+    p = subprocess.run([sys.executable, "scripts/plot_sheet.py", str(o)], capture_output=True,
+                       text=True)
+    pngs = [o / f"sheet_membrane_{k}.png" for k in ("plan", "section")]
+    c.check(f"h = {h}: plot_sheet.py draws the plan and the sections", p.returncode == 0 and
+            all(f.exists() and f.stat().st_size > 10000 for f in pngs), p.stderr[-300:])
 
 
 meshes = [1.0, 0.5] if np_ == 1 else [1.0]
