@@ -23,7 +23,11 @@ per point; scripts/plot_sheet.py draws its two PNGs from them. On 2 ranks (the s
 z = the centre) the h = 1 m answers equal the one-rank run's to 1e-8 (measured 5e-14; the points
 are shared by an allreduce, the nodal sums' order changes). On 2: checkpoints every 2,000 steps
 leave sheets.h5 bit for bit, and a restart from step 2,000 ends at the same step, bit for bit on
-1 rank and within 1e-10 of the radius on 2.
+1 rank and within 1e-10 of the radius on 2, and so does an elastoplastic sheet's on 1 rank (its
+plastic state is checkpointed). On 1 rank the elastoplastic law (plane-stress von Mises on the
+forces): never yielding it is the linear sheet (1e-12; measured 3.5e-14); yielding (sigma_y t =
+1,500 N/m, H t = 1e4 N/m) it converges, sags more (1.60 against 1.42 m), and every triangle lies
+within its hardened yield surface (1e-9; measured 4.6e-16).
 """
 import subprocess
 import sys
@@ -114,6 +118,36 @@ for h in meshes:
             r["peak_strain_triangle"] >= r["peak_strain_major"])
     if np_ == 1:
         check_files(c, h, o, r)
+if np_ == 1:
+    # the elastoplastic law (plane-stress von Mises on the forces, linear hardening): with a yield
+    # force never reached it is the linear law; with sigma_y t = 1500 N/m (below the elastic
+    # sheet's 1,650 N/m at the rim) and H t = 1e4 N/m the sheet yields and sags more, and every
+    # triangle stays on or inside its hardened yield surface
+    plastic = ["-options_file", "options/sheet.opts", "-mat_membrane_law", "elastoplastic",
+               "-mat_membrane_hardening", "1e6"]
+    o = out / "plastic_elastic"
+    run(exe, 1, plastic + ["-mat_membrane_yield_stress", "1e9"], o)
+    rp = summary(o)["results"]
+    for k in ("sag", "strain_centre", "strain_rim"):
+        rel(c, f"elastoplastic, never yielding: {k} as linear", rp[k], res[1.0][k],
+            1e-12 * abs(res[1.0][k]))
+    o = out / "plastic"
+    run(exe, 1, plastic + ["-mat_membrane_yield_stress", "1.5e5"], o)
+    s = summary(o)
+    rp = s["results"]
+    c.check("elastoplastic, yielding: converged", s["converged"], f"({s['steps']} steps)")
+    c.check("elastoplastic, yielding: sags more than the elastic sheet",
+            rp["sag"] > 1.05 * res[1.0]["sag"], f"({rp['sag']:.4f} vs {res[1.0]['sag']:.4f} m)")
+    with h5py.File(o / "sheets.h5", "r") as f:
+        g = f["sheets/membrane"]
+        n1, n2 = np.array(g["triangle_tension_major"]), np.array(g["triangle_tension_minor"])
+        a = np.array(g["triangle_plastic_strain"])
+    q = np.sqrt(n1 * n1 - n1 * n2 + n2 * n2)
+    c.check("elastoplastic, yielding: some triangles yielded", (a > 0).sum() > 10,
+            f"({(a > 0).sum()} of {len(a)})")
+    over = (q - (1500 + 1e4 * a)).max() / 1500
+    c.check("elastoplastic, yielding: every triangle within its yield surface (1e-9)",
+            over <= 1e-9, f"(max excess {over:.2e} of the yield force)")
 if len(res) > 1:
     e = [abs(res[h]["strain_centre"] / ex["strain_centre"] - 1) for h in meshes]
     c.check("centre strain's error falls from 1 to 0.5 m", e[1] < e[0], f"({e[0]:.2e} -> {e[1]:.2e})")
@@ -154,4 +188,14 @@ if np_ == 2:
             d = np.abs(sheet_arrays(o)["position"] - base["position"]).max()
             c.check("restart on 2 ranks: sheet positions within 1e-10 of the radius", d <= 1e-10 * A,
                     f"({d:.2e} m)")
+    # the elastoplastic sheet's plastic state is checkpointed: a restart ends bit for bit
+    plastic = ["-options_file", "options/sheet.opts", "-mat_membrane_law", "elastoplastic",
+               "-mat_membrane_hardening", "1e6", "-mat_membrane_yield_stress", "1.5e5"]
+    run(exe, 1, plastic, out / "plastic")
+    run(exe, 1, plastic + ["-checkpoint_every", "3000"], out / "plastic_ck")
+    run(exe, 1, plastic + ["-restart", str(out / "plastic_ck" / "checkpoint_3000.h5")],
+        out / "plastic_restart")
+    pa, pr = sheet_arrays(out / "plastic"), sheet_arrays(out / "plastic_restart")
+    c.check("elastoplastic: a restart from step 3,000 ends bit for bit (plastic strains too)",
+            all(np.array_equal(pa[k], v) for k, v in pr.items()))
 c.done()

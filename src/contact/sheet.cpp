@@ -38,6 +38,46 @@ double sheet_energy_density(SheetLaw law, double J, double nu, double b1, double
   return 0.0;
 }
 
+void sheet_plastic_forces(double J, double nu, double yield_N, double hardening, const double B[3],
+                          double Bp[3], double &alpha, double N[3]) {
+  const double e11 = B[0] - Bp[0], e22 = B[1] - Bp[1], e12 = B[2] - Bp[2];
+  N[0] = J * (e11 + nu * e22);
+  N[1] = J * (e22 + nu * e11);
+  N[2] = J * (1.0 - nu) * e12;
+  const double r2 = std::sqrt(2.0);
+  const double at = (N[0] + N[1]) / r2, bt = (N[1] - N[0]) / r2, ct = N[2];
+  auto q_of = [&](double l) {
+    const double a = at / (1 + 0.5 * J * (1 + nu) * l), k = 1 + 1.5 * J * (1 - nu) * l;
+    const double b = bt / k, c = ct / k;
+    return std::sqrt(0.5 * a * a + 1.5 * b * b + 3 * c * c);
+  };
+  const double Y = yield_N + hardening * alpha;
+  const double q0 = q_of(0.0);
+  if (q0 <= Y * (1 + 1e-12)) return; // elastic, or on the surface already
+  // q(l) (1 - H l) - Y falls from q0 - Y > 0: bracket its root, then bisect to round-off
+  auto g = [&](double l) { return q_of(l) * (1 - hardening * l) - Y; };
+  double lo = 0, hi = (q0 - Y) / (J * std::fmin(1 + nu, 1 - nu) * std::fmax(Y, 1e-300 * J));
+  while (g(hi) > 0) hi *= 2;
+  for (int it = 0; it < 200 && hi - lo > 1e-16 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (g(mid) > 0 ? lo : hi) = mid;
+  }
+  const double l = hi;
+  const double a = at / (1 + 0.5 * J * (1 + nu) * l), k = 1 + 1.5 * J * (1 - nu) * l;
+  const double b = bt / k, c = ct / k;
+  const double dpa = 0.5 * l * a, dpb = 1.5 * l * b;
+  Bp[0] += (dpa - dpb) / r2;
+  Bp[1] += (dpa + dpb) / r2;
+  Bp[2] += 1.5 * l * c;
+  alpha += l * q_of(l);
+  // the forces of the new elastic strain (the returned a, b, c to round-off): the same bits as a
+  // second call at these positions gives, so a restart recomputes them exactly
+  const double f11 = B[0] - Bp[0], f22 = B[1] - Bp[1], f12 = B[2] - Bp[2];
+  N[0] = J * (f11 + nu * f22);
+  N[1] = J * (f22 + nu * f11);
+  N[2] = J * (1.0 - nu) * f12;
+}
+
 void sheet_disc(double R, double ds, const double c[3], Sheet &s) {
   const int K = std::max(1, static_cast<int>(std::ceil(R / ds - 1e-9)));
   std::vector<int> first(K + 2, 0); // ring k's points are [first[k], first[k + 1])
@@ -142,6 +182,11 @@ void sheet_reference(Sheet &s) {
   s.b.assign(2 * static_cast<size_t>(s.nt), 0.0);
   s.N.assign(2 * static_cast<size_t>(s.nt), 0.0);
   s.state.assign(s.nt, SheetState::Taut);
+  s.tens.assign(3 * static_cast<size_t>(s.nt), 0.0);
+  if (s.law == SheetLaw::Elastoplastic) {
+    s.bp.assign(3 * static_cast<size_t>(s.nt), 0.0);
+    s.alpha.assign(s.nt, 0.0);
+  }
 }
 
 namespace {
@@ -173,6 +218,21 @@ Stretches PrincipalStretches(const Mat32 &F) {
 }
 } // namespace
 
+namespace {
+// Triangle t's corner forces -A0 P g_a added to its points.
+void AddCornerForces(Sheet &s, int t, const Mat32 &P) {
+  const Eigen::Map<const Eigen::Matrix<double, 2, 2, Eigen::RowMajor>> Di(
+      &s.dinv[4 * static_cast<size_t>(t)]);
+  const Eigen::Vector2d g1 = Di.row(0).transpose(), g2 = Di.row(1).transpose(), g0 = -(g1 + g2);
+  const Eigen::Vector2d *g[3] = {&g0, &g1, &g2};
+  const int *v = &s.tri[3 * static_cast<size_t>(t)];
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3d fa = -s.a0[t] * (P * *g[a]);
+    for (int d = 0; d < 3; ++d) s.f[3 * v[a] + d] += fa[d];
+  }
+}
+} // namespace
+
 void sheet_update_forces(Sheet &s) {
   std::fill(s.f.begin(), s.f.end(), 0.0);
   for (int t = 0; t < s.nt; ++t) {
@@ -180,35 +240,54 @@ void sheet_update_forces(Sheet &s) {
     const Stretches st = PrincipalStretches(F);
     const double l1 = st.l1, l2 = st.l2;
     const Eigen::Vector2d &n1 = st.n1, &n2 = st.n2;
-    const SheetTensions T = sheet_tensions(s.law, s.J, s.nu, l1 - 1.0, l2 - 1.0);
     const Eigen::Matrix2d B = (l1 - 1.0) * n1 * n1.transpose() + (l2 - 1.0) * n2 * n2.transpose();
-    double *bt = &s.biot[3 * static_cast<size_t>(t)];
+    double *bt = &s.biot[3 * static_cast<size_t>(t)], *tt = &s.tens[3 * static_cast<size_t>(t)];
     bt[0] = B(0, 0);
     bt[1] = B(1, 1);
     bt[2] = B(0, 1);
     s.b[2 * t] = l1 - 1.0;
     s.b[2 * t + 1] = l2 - 1.0;
+    if (s.law == SheetLaw::Elastoplastic) { // the forces from the plastic state (not coaxial)
+      sheet_plastic_forces(s.J, s.nu, s.yield_N, s.hardening, bt, &s.bp[3 * static_cast<size_t>(t)],
+                           s.alpha[t], tt);
+      Eigen::Matrix2d Tm;
+      Tm << tt[0], tt[2], tt[2], tt[1];
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+      eig.computeDirect(Tm);
+      s.N[2 * t] = eig.eigenvalues()[1];
+      s.N[2 * t + 1] = eig.eigenvalues()[0];
+      s.state[t] = SheetState::Taut;
+      // P = R T with R = F U^-1 the rotation
+      const Eigen::Matrix2d Uinv = n1 * n1.transpose() / l1 + n2 * n2.transpose() / l2;
+      AddCornerForces(s, t, F * Uinv * Tm);
+      continue;
+    }
+    const SheetTensions T = sheet_tensions(s.law, s.J, s.nu, l1 - 1.0, l2 - 1.0);
     s.N[2 * t] = T.N1;
     s.N[2 * t + 1] = T.N2;
     s.state[t] = T.state;
+    const Eigen::Matrix2d Tm = T.N1 * n1 * n1.transpose() + T.N2 * n2 * n2.transpose();
+    tt[0] = Tm(0, 0);
+    tt[1] = Tm(1, 1);
+    tt[2] = Tm(0, 1);
     if (T.N1 == 0.0 && T.N2 == 0.0) continue;
     // P = F U^-1 T_B (the Biot tension rotated into place); l_i > 0 wherever a tension acts
-    const Mat32 P = F * (T.N1 / l1 * n1 * n1.transpose() +
-                         (T.N2 != 0.0 ? T.N2 / l2 : 0.0) * n2 * n2.transpose());
-    const Eigen::Map<const Eigen::Matrix<double, 2, 2, Eigen::RowMajor>> Di(
-        &s.dinv[4 * static_cast<size_t>(t)]);
-    const Eigen::Vector2d g1 = Di.row(0).transpose(), g2 = Di.row(1).transpose(), g0 = -(g1 + g2);
-    const Eigen::Vector2d *g[3] = {&g0, &g1, &g2};
-    const int *v = &s.tri[3 * static_cast<size_t>(t)];
-    for (int a = 0; a < 3; ++a) {
-      const Eigen::Vector3d fa = -s.a0[t] * (P * *g[a]);
-      for (int d = 0; d < 3; ++d) s.f[3 * v[a] + d] += fa[d];
-    }
+    AddCornerForces(s, t,
+                    F * (T.N1 / l1 * n1 * n1.transpose() +
+                         (T.N2 != 0.0 ? T.N2 / l2 : 0.0) * n2 * n2.transpose()));
   }
 }
 
 double sheet_energy(const Sheet &s) {
   double U = 0;
+  if (s.law == SheetLaw::Elastoplastic) { // the elastic part, from the last forces computed
+    for (int t = 0; t < s.nt; ++t) {
+      const double *B = &s.biot[3 * static_cast<size_t>(t)], *P = &s.bp[3 * static_cast<size_t>(t)],
+                   *N = &s.tens[3 * static_cast<size_t>(t)];
+      U += 0.5 * s.a0[t] * (N[0] * (B[0] - P[0]) + N[1] * (B[1] - P[1]) + 2 * N[2] * (B[2] - P[2]));
+    }
+    return U;
+  }
   for (int t = 0; t < s.nt; ++t) {
     const Stretches st = PrincipalStretches(Deformation(s, t));
     U += s.a0[t] * sheet_energy_density(s.law, s.J, s.nu, st.l1 - 1.0, st.l2 - 1.0);
@@ -263,10 +342,8 @@ namespace {
 void TriangleTensors(const Sheet &s, int t, Eigen::Matrix2d &B, Eigen::Matrix2d &T, Mat32 &Q) {
   const double *bt = &s.biot[3 * static_cast<size_t>(t)], *e = &s.basis[6 * static_cast<size_t>(t)];
   B << bt[0], bt[2], bt[2], bt[1];
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
-  eig.computeDirect(B);
-  const Eigen::Vector2d n1 = eig.eigenvectors().col(1), n2 = eig.eigenvectors().col(0);
-  T = s.N[2 * t] * n1 * n1.transpose() + s.N[2 * t + 1] * n2 * n2.transpose();
+  const double *tt = &s.tens[3 * static_cast<size_t>(t)];
+  T << tt[0], tt[2], tt[2], tt[1];
   Q.col(0) = Eigen::Vector3d(e[0], e[1], e[2]);
   Q.col(1) = Eigen::Vector3d(e[3], e[4], e[5]);
 }

@@ -115,8 +115,11 @@ std::string XdmfSheet(const Sheet &s, const std::string &name, double time) {
                         {"triangle_tension_major", "Cell", s.nt, 1},
                         {"triangle_tension_minor", "Cell", s.nt, 1},
                         {"triangle_state", "Cell", s.nt, 1},
-                        {"triangle_direction_major", "Cell", s.nt, 3}};
+                        {"triangle_direction_major", "Cell", s.nt, 3},
+                        {"triangle_plastic_strain", "Cell", s.nt, 1}};
   for (const Attr &a : attrs) {
+    if (a.name == std::string("triangle_plastic_strain") && s.law != SheetLaw::Elastoplastic)
+      continue;
     char dims[64];
     snprintf(dims, sizeof(dims), a.comps > 1 ? "%d %d" : "%d", a.n, a.comps);
     snprintf(buf, sizeof(buf),
@@ -169,6 +172,8 @@ PetscErrorCode OutputSheets(Simulation &sim) {
       err |= WriteDoubles(g, "triangle_tension_minor", s.nt, 1, F.n2.data());
       err |= WriteDoubles(g, "triangle_state", s.nt, 1, F.state.data());
       err |= WriteDoubles(g, "triangle_direction_major", s.nt, 3, F.direction.data());
+      if (s.law == SheetLaw::Elastoplastic)
+        err |= WriteDoubles(g, "triangle_plastic_strain", s.nt, 1, s.alpha.data());
       err |= H5Gclose(g) < 0;
       xmf += XdmfSheet(s, name, sim.run.time);
     }

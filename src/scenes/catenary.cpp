@@ -165,11 +165,8 @@ public:
                    "-dim 3: -depth %g m is the catenary strip's width plus a cell: give at least "
                    "two cells (%g m)",
                    sim.set.depth, 2 * h);
-    const int linear = MembraneLawId<LinearMembrane>, field = MembraneLawId<TensionOnlyMembrane>;
-    PmpmCheckInput(probe.law.kind == linear || probe.law.kind == field, sim.comm, PETSC_ERR_SUP,
-                   "-mat_membrane_law %s: a 3D sheet takes linear or tension_only (no "
-                   "plane-stress yield yet)",
-                   MembraneLaws::names[probe.law.kind]);
+    const int field = MembraneLawId<TensionOnlyMembrane>,
+              plastic = MembraneLawId<ElastoplasticMembrane>;
     // uniaxial J = E t is the sheet's E t / (1 - nu^2) only when nu = 0
     PmpmCheckInput(probe.stiffness == StiffnessKind::PlaneStrain || probe.nu == 0, sim.comm,
                    PETSC_ERR_SUP,
@@ -182,7 +179,11 @@ public:
     nz3_ = static_cast<int>(std::llround(sim.set.depth / h));
     width_ = (nz3_ - 1) * h;
     Sheet st;
-    st.law = probe.law.kind == field ? SheetLaw::TensionField : SheetLaw::Linear;
+    st.law = probe.law.kind == field     ? SheetLaw::TensionField
+             : probe.law.kind == plastic ? SheetLaw::Elastoplastic
+                                         : SheetLaw::Linear;
+    st.yield_N = probe.law.yield_T; // sigma_y t (elastoplastic)
+    st.hardening = probe.law.hardening;
     st.J = probe.law.J;
     st.nu = probe.nu;
     st.area_mass = probe.line_mass;

@@ -51,11 +51,8 @@ public:
     PmpmCheckInput(sim.set.depth == 0, sim.comm, PETSC_ERR_ARG_INCOMP,
                    "-depth %g: -scene sheet sizes its box's depth itself (leave -depth out)",
                    sim.set.depth);
-    const int linear = MembraneLawId<LinearMembrane>, field = MembraneLawId<TensionOnlyMembrane>;
-    PmpmCheckInput(probe.law.kind == linear || probe.law.kind == field, sim.comm, PETSC_ERR_SUP,
-                   "-mat_membrane_law %s: a 3D sheet takes linear or tension_only (no plane-stress "
-                   "yield yet)",
-                   MembraneLaws::names[probe.law.kind]);
+    const int field = MembraneLawId<TensionOnlyMembrane>,
+              plastic = MembraneLawId<ElastoplasticMembrane>;
     PmpmCheckInput(probe.stiffness == StiffnessKind::PlaneStrain, sim.comm, PETSC_ERR_SUP,
                    "-mat_membrane_axial_stiffness uniaxial: a 3D sheet is biaxial (J = E t / (1 - "
                    "nu^2)); leave it at plane_strain");
@@ -76,7 +73,11 @@ public:
     centre_[1] = y0_;
     centre_[2] = half * h;
     Sheet s;
-    s.law = probe.law.kind == field ? SheetLaw::TensionField : SheetLaw::Linear;
+    s.law = probe.law.kind == field     ? SheetLaw::TensionField
+            : probe.law.kind == plastic ? SheetLaw::Elastoplastic
+                                        : SheetLaw::Linear;
+    s.yield_N = probe.law.yield_T; // sigma_y t (elastoplastic)
+    s.hardening = probe.law.hardening;
     s.J = probe.law.J;
     s.nu = probe.nu;
     s.area_mass = probe.line_mass;

@@ -236,6 +236,79 @@ int main() {
     CHECK_CLOSE(p.triangle_strain1, stretch, 1e-12);
   }
 
+  // 2c. the elastoplastic sheet (sheet_plastic_forces): plane-stress von Mises on the forces with
+  //     linear hardening, at a point and through the lattice
+  {
+    const double Ny = 0.01 * J, H = 0.2 * J, ey = Ny / (J * (1 + nu)); // equibiaxial yield strain
+    // equibiaxial strain past yield: N = Ny + H alpha, e_p = alpha / 2 each way, so
+    // N (1 + J (1 + nu) / (2 H)) = J (1 + nu) (e + Ny / (2 H)); in 7 unequal increments
+    double Bp[3] = {0, 0, 0}, alpha = 0, N[3];
+    for (const double e : {0.5 * ey, 1.3 * ey, 2 * ey, 2.1 * ey, 3.7 * ey, 5 * ey, 8 * ey}) {
+      const double B[3] = {e, e, 0};
+      pmpm::sheet_plastic_forces(J, nu, Ny, H, B, Bp, alpha, N);
+      const double k = J * (1 + nu),
+                   want = e <= ey ? k * e : (k * e + k * Ny / (2 * H)) / (1 + k / (2 * H));
+      CHECK_CLOSE(N[0], want, 1e-10 * J * ey);
+      CHECK_CLOSE(N[1], want, 1e-10 * J * ey);
+      CHECK_CLOSE(N[2], 0.0, 1e-12 * J * ey);
+      CHECK_CLOSE(alpha, e <= ey ? 0.0 : (want - Ny) / H, 1e-9 * ey);
+    }
+    // the same strain again: on the yield surface, nothing changes (bit for bit)
+    {
+      const double B[3] = {8 * ey, 8 * ey, 0}, Bp0[3] = {Bp[0], Bp[1], Bp[2]}, a0 = alpha;
+      pmpm::sheet_plastic_forces(J, nu, Ny, H, B, Bp, alpha, N);
+      CHECK(Bp[0] == Bp0[0] && Bp[1] == Bp0[1] && Bp[2] == Bp0[2] && alpha == a0);
+      // unloading by d: elastic, N falls by J (1 + nu) d, the plastic state kept
+      const double d = 0.5 * ey, B2[3] = {8 * ey - d, 8 * ey - d, 0}, N0 = N[0];
+      pmpm::sheet_plastic_forces(J, nu, Ny, H, B2, Bp, alpha, N);
+      CHECK_CLOSE(N[0], N0 - J * (1 + nu) * d, 1e-10 * J * ey);
+      CHECK(Bp[0] == Bp0[0] && alpha == a0);
+    }
+    // perfectly plastic (H = 0): equibiaxial plateau N = Ny; pure shear plateau N12 = Ny / sqrt 3
+    double P2[3] = {0, 0, 0}, a2 = 0;
+    for (int i = 1; i <= 6; ++i) {
+      const double B[3] = {i * ey, i * ey, 0};
+      pmpm::sheet_plastic_forces(J, nu, Ny, 0.0, B, P2, a2, N);
+      CHECK_CLOSE(N[0], std::fmin(i, 1) * Ny, 1e-10 * Ny);
+    }
+    double P3[3] = {0, 0, 0}, a3 = 0;
+    const double gy = Ny / std::sqrt(3.0) / (J * (1 - nu)); // shear yield (tensor strain)
+    for (int i = 1; i <= 6; ++i) {
+      const double B[3] = {0, 0, 0.5 * i * gy};
+      pmpm::sheet_plastic_forces(J, nu, Ny, 0.0, B, P3, a3, N);
+      CHECK_CLOSE(N[2], std::fmin(0.5 * i, 1.0) * Ny / std::sqrt(3.0), 1e-10 * Ny);
+      CHECK_CLOSE(N[0], 0.0, 1e-12 * Ny);
+      CHECK_CLOSE(N[1], 0.0, 1e-12 * Ny);
+    }
+    // through the lattice: an equibiaxial stretch past yield, rotated in space, gives every
+    // triangle the point's answer and no net force at the inner points; the same positions
+    // again change nothing
+    Sheet s;
+    s.law = SheetLaw::Elastoplastic;
+    s.J = J;
+    s.nu = nu;
+    s.yield_N = Ny;
+    s.hardening = H;
+    pmpm::sheet_rectangle(0.0, 0.5, 4, 0.0, 0.5, 4, 0.0, s);
+    const double c[3] = {0.75, 0, 0.75}, u[3] = {0.0, 0.6, 0.8}, e = 4 * ey;
+    double R[9], A[9];
+    rotation(u, 0.9, R);
+    const double Sb[9] = {1 + e, 0, 0, 0, 1, 0, 0, 0, 1 + e};
+    matmul(R, Sb, A);
+    deform(s, c, A);
+    pmpm::sheet_update_forces(s);
+    const double k = J * (1 + nu), want = (k * e + k * Ny / (2 * H)) / (1 + k / (2 * H));
+    for (int t = 0; t < s.nt; ++t) {
+      CHECK_CLOSE(s.N[2 * t], want, 1e-9 * J * ey);
+      CHECK_CLOSE(s.N[2 * t + 1], want, 1e-9 * J * ey);
+    }
+    for (int i : {5, 6, 9, 10}) // the inner points
+      for (int d = 0; d < 3; ++d) CHECK(std::fabs(s.f[3 * i + d]) < 1e-10 * J * e);
+    const std::vector<double> f0 = s.f, bp0 = s.bp;
+    pmpm::sheet_update_forces(s);
+    CHECK(s.f == f0 && s.bp == bp0);
+  }
+
   // 3. forces = -grad U
   for (SheetLaw law : {SheetLaw::Linear, SheetLaw::TensionField}) {
     Sheet s;

@@ -22,6 +22,7 @@
 // (Stein and Hedgepeth 1961; Roddeman et al. 1987): taut when N2 >= 0 (the law above); wrinkled
 // when N2 < 0 < b1 (the wrinkles carry nothing across: N2 = 0, N1 = E t b1, W = E t b1^2 / 2);
 // slack when b1 <= 0 (nothing). W is continuous across the three states.
+// The elastoplastic law (-mat_<name>_law elastoplastic): sheet_plastic_forces below.
 //
 // Forces: the first Piola-Kirchhoff tension P = F sum_i (N_i / l_i) n_i n_i^T (3 x 2; the
 // rotation of the Biot tension, which is coaxial with U) and, for each corner a of a triangle of
@@ -36,7 +37,25 @@
 
 namespace pmpm {
 
-enum class SheetLaw { Linear = 0, TensionField = 1 };
+enum class SheetLaw { Linear = 0, TensionField = 1, Elastoplastic = 2 };
+
+// The elastoplastic sheet (-mat_<name>_law elastoplastic): plane-stress von Mises on the membrane
+// forces with linear isotropic hardening, the chain's 1D law lifted (its yield force
+// N_y = sigma_y t and hardening H t per width). Over a triangle's laid basis, with the Biot strain
+// B (e11, e22, e12: tensor components), the plastic strain Bp and the accumulated plastic strain
+// alpha, the forces are N = C (B - Bp) with C the plane-stress elasticity (J = E t / (1 - nu^2):
+// N11 = J (e11 + nu e22), N22 = J (e22 + nu e11), N12 = J (1 - nu) e12), and
+//   q(N) = sqrt(N11^2 - N11 N22 + N22^2 + 3 N12^2) <= N_y + H alpha.
+// Past it the return is closest-point (associative): in the coordinates a = (N11 + N22) / sqrt 2,
+// b = (N22 - N11) / sqrt 2, c = N12, where C and q are both diagonal, a = a_tr / (1 + J (1 + nu)
+// l / 2), b = b_tr / (1 + 3 J (1 - nu) l / 2), c likewise, with the one scalar l >= 0 from
+// q(l) (1 - H l) = N_y + H alpha_n (bisection: q falls monotonically in l); then
+// d alpha = l q and dBp = l (a / 2, 3 b / 2, 3 c / 2) in those coordinates (Simo and Hughes 1998,
+// section 3.4, the plane-stress return in forces). A state on the yield surface (within 1e-12 of
+// its radius) is left as it is, so a restart that recomputes the forces at the checkpoint's
+// positions changes nothing. N: out (N11, N22, N12); Bp (3) and alpha updated in place.
+void sheet_plastic_forces(double J, double nu, double yield_N, double hardening, const double B[3],
+                          double Bp[3], double &alpha, double N[3]);
 
 // Principal tensions (N/m) for principal Biot strains b1 >= b2 and the sheet's state there.
 enum class SheetState { Taut = 0, Wrinkled = 1, Slack = 2 };
@@ -52,6 +71,7 @@ struct Sheet {
   std::string name = "membrane"; // its files' and its material's name
   SheetLaw law = SheetLaw::Linear;
   double J = 0, nu = 0;                  // J = E t / (1 - nu^2) (N/m), Poisson's ratio
+  double yield_N = 0, hardening = 0;     // Elastoplastic: sigma_y t, H t (N/m)
   double area_mass = 0, area_weight = 0; // rho t (kg/m^2), gamma t (N/m^2)
   // points (3 per point in x, x0, v, f)
   int n = 0;
@@ -69,16 +89,23 @@ struct Sheet {
   // principal strains b1 >= b2 and tensions N1, N2, the state
   std::vector<double> biot, b, N;
   std::vector<SheetState> state;
+  // per triangle: the forces' tensor (N11, N22, N12 in e1, e2; its principal values are N), and
+  // under the elastoplastic law the plastic strain (3) and the accumulated plastic strain
+  std::vector<double> tens, bp, alpha;
 
   // the in-plane wave speed sqrt(J / rho t) (the stable step's)
   double wave_speed() const { return std::sqrt(J / area_mass); }
 
   // The checkpointed state (checkpoint.cpp, /sheets/<k> datasets): f(name, array) for the
-  // positions and velocities; the lattice and its reference come from the options, the forces,
-  // strains and normals from x (sheet_update_forces, sheet_normals).
+  // positions and velocities (and an elastoplastic sheet's plastic state); the lattice and its
+  // reference come from the options, the forces, strains and normals from x (sheet_update_forces,
+  // sheet_normals).
   template <class F> int checkpoint_arrays(F &&f) {
     int err = f("x", x);
-    return err ? err : f("v", v);
+    if (!err) err = f("v", v);
+    if (!err && law == SheetLaw::Elastoplastic) err = f("plastic_strain", bp);
+    if (!err && law == SheetLaw::Elastoplastic) err = f("alpha", alpha);
+    return err;
   }
 };
 
