@@ -1,8 +1,9 @@
 // 3D sheets (sheet.hpp) in the explicit step under -dim 3: their points' mass, momentum and
 // forces into the grid's nodes, the points moved by the owner of their cell and shared by one
-// allreduce, their forces from the new positions, and their share of the step's report. A sheet
-// alone on the grid for now (the sheet scene): it is the grid's only body, and contact with
-// bodies on its faces is the next step of issue 23.
+// allreduce, their forces from the new positions, and their share of the step's report. Points
+// may be pinned, or held in some components (rollers: the extruded catenary's free edges). A
+// sheet is alone on the grid for now (the sheet and extruded catenary scenes): it is the grid's
+// only body; its contact with bodies on its faces (contact_stack3) is the next step of issue 23.
 #include "pmpm/step/step_hooks.hpp"
 #include <cmath>
 
