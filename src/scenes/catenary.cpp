@@ -165,8 +165,6 @@ public:
                    "-dim 3: -depth %g m is the catenary strip's width plus a cell: give at least "
                    "two cells (%g m)",
                    sim.set.depth, 2 * h);
-    const int field = MembraneLawId<TensionOnlyMembrane>,
-              plastic = MembraneLawId<ElastoplasticMembrane>;
     // uniaxial J = E t is the sheet's E t / (1 - nu^2) only when nu = 0
     PmpmCheckInput(probe.stiffness == StiffnessKind::PlaneStrain || probe.nu == 0, sim.comm,
                    PETSC_ERR_SUP,
@@ -178,16 +176,7 @@ public:
     nx3_ = static_cast<int>(std::ceil(span_ / h - 1e-9)) + 1;
     nz3_ = static_cast<int>(std::llround(sim.set.depth / h));
     width_ = (nz3_ - 1) * h;
-    Sheet st;
-    st.law = probe.law.kind == field     ? SheetLaw::TensionField
-             : probe.law.kind == plastic ? SheetLaw::Elastoplastic
-                                         : SheetLaw::Linear;
-    st.yield_N = probe.law.yield_T; // sigma_y t (elastoplastic)
-    st.hardening = probe.law.hardening;
-    st.J = probe.law.J;
-    st.nu = probe.nu;
-    st.area_mass = probe.line_mass;
-    st.area_weight = probe.line_weight;
+    Sheet st = SheetMaterialOf(probe);
     sheet_rectangle(cs.line[0], span_ / (nx3_ - 1), nx3_, 0.5 * h, h, nz3_, cs.line[1], st);
     st.held.assign(st.n, 0);
     for (int i = 0; i < nx3_; ++i)

@@ -51,8 +51,6 @@ public:
     PmpmCheckInput(sim.set.depth == 0, sim.comm, PETSC_ERR_ARG_INCOMP,
                    "-depth %g: -scene sheet sizes its box's depth itself (leave -depth out)",
                    sim.set.depth);
-    const int field = MembraneLawId<TensionOnlyMembrane>,
-              plastic = MembraneLawId<ElastoplasticMembrane>;
     PmpmCheckInput(probe.stiffness == StiffnessKind::PlaneStrain, sim.comm, PETSC_ERR_SUP,
                    "-mat_membrane_axial_stiffness uniaxial: a 3D sheet is biaxial (J = E t / (1 - "
                    "nu^2)); leave it at plane_strain");
@@ -72,16 +70,7 @@ public:
     centre_[0] = 0;
     centre_[1] = y0_;
     centre_[2] = half * h;
-    Sheet s;
-    s.law = probe.law.kind == field     ? SheetLaw::TensionField
-            : probe.law.kind == plastic ? SheetLaw::Elastoplastic
-                                        : SheetLaw::Linear;
-    s.yield_N = probe.law.yield_T; // sigma_y t (elastoplastic)
-    s.hardening = probe.law.hardening;
-    s.J = probe.law.J;
-    s.nu = probe.nu;
-    s.area_mass = probe.line_mass;
-    s.area_weight = probe.line_weight;
+    Sheet s = SheetMaterialOf(probe);
     sheet_disc(radius_, h, centre_, s);
     dr_ = radius_ / std::ceil(radius_ / h - 1e-9); // the lattice's ring gap (sheet_disc's K)
     sheet_normals(s);
