@@ -92,7 +92,7 @@ void stack_friction_pgs(int nb, const double *m, double *vt, const double *cap, 
 // Three dimensions (the 3D sheet's faces): the same stack along a unit normal n (3 components);
 // a body's tangential velocity vt_k is a vector in the plane normal to n, each face's friction
 // impulse S_k a vector there too, and Coulomb's law a cone, |S_k| <= C_k. The normal step is the
-// one above (scalar along n). The tangential step minimises the kinetic energy sum_k m_k
+// 2D kernel's, run on the normal components alone (scalar along n). The tangential step minimises the kinetic energy sum_k m_k
 // |vt_k'|^2 / 2 over |S_k| <= C_k (maximal dissipation); its dual is
 //   min_w  sum_k m_k / 2 |w_k - vt_k|^2 + sum_k C_k |w_{k+1} - w_k|,
 // strictly convex, whose minimiser is Coulomb's law: a face sticks (w_k = w_{k+1}) while its
@@ -101,10 +101,12 @@ void stack_friction_pgs(int nb, const double *m, double *vt, const double *cap, 
 // the faces' states (stick or slide; free faces split the stack as in 2D) with the fewest slides
 // first: stuck faces join bodies into clusters, and the clusters' velocities minimise the smooth
 // energy above with every sliding face's velocity jump nonzero, by Newton's method with a line
-// search (quadratic convergence; a light sheet between heavy bodies is a small, well-posed
-// system, not a slow iteration). A state is accepted when every sliding face's jump stays away
-// from zero and every stuck face's impulse is inside its cone, up to round-off. Should none be,
-// projected block Gauss-Seidel (each face's impulse projected on its disc) is used instead.
+// search: first with the jumps smoothed, sqrt(|d|^2 + eps^2) with eps falling from a tenth to
+// 1e-11 of the velocity scale (so that a jump may reverse on the way), then unsmoothed (a light
+// sheet between heavy bodies is a small, well-posed system, not a slow iteration). A state is
+// accepted when every sliding face's jump stays above 1e-12 of the velocity scale and every stuck
+// face's impulse is inside its cone to 1e-12 of the momenta summed. Should none be, projected
+// block Gauss-Seidel (each face's impulse projected on its disc) is used instead.
 struct StackFaceResult3 {
   double normal = 0;                // as StackFaceResult
   double tangential[3] = {0, 0, 0}; // friction impulse on the LOWER body (the upper gets minus it)
