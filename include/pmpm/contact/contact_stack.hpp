@@ -92,8 +92,8 @@ void stack_friction_pgs(int nb, const double *m, double *vt, const double *cap, 
 // Three dimensions (the 3D sheet's faces): the same stack along a unit normal n (3 components);
 // a body's tangential velocity vt_k is a vector in the plane normal to n, each face's friction
 // impulse S_k a vector there too, and Coulomb's law a cone, |S_k| <= C_k. The normal step is the
-// 2D kernel's, run on the normal components alone (scalar along n). The tangential step minimises the kinetic energy sum_k m_k
-// |vt_k'|^2 / 2 over |S_k| <= C_k (maximal dissipation); its dual is
+// 2D kernel's, run on the normal components alone (scalar along n). The tangential step minimises
+// the kinetic energy sum_k m_k |vt_k'|^2 / 2 over |S_k| <= C_k (maximal dissipation); its dual is
 //   min_w  sum_k m_k / 2 |w_k - vt_k|^2 + sum_k C_k |w_{k+1} - w_k|,
 // strictly convex, whose minimiser is Coulomb's law: a face sticks (w_k = w_{k+1}) while its
 // impulse is inside the cone, and slides with S_k = C_k (w_{k+1} - w_k) / |w_{k+1} - w_k| on
