@@ -423,9 +423,9 @@ struct AttrReader {
   }
 };
 
-// The two ends of Chain::checkpoint_arrays: each array a dataset of the current group (slack
-// flags as 0/1, the reactions as 4 values), written ...
-struct ChainArrayWriter {
+// The two ends of Chain::checkpoint_arrays and Sheet::checkpoint_arrays: each array a dataset of
+// the current group (slack flags as 0/1, the reactions as 4 values), written ...
+struct PointArrayWriter {
   PetscViewer v;
   PetscErrorCode operator()(const char *name, std::vector<double> &a) const {
     return CheckpointWriteArray(v, name, a);
@@ -437,8 +437,8 @@ struct ChainArrayWriter {
     return CheckpointWriteArray(v, name, {r[0][0], r[0][1], r[1][0], r[1][1]});
   }
 };
-// ... and read back, each of the length this run's chain has (else a damaged checkpoint).
-struct ChainArrayReader {
+// ... and read back, each of the length this run's chain or sheet has (else a damaged checkpoint).
+struct PointArrayReader {
   PetscViewer v;
   const std::string &who; // "chain <name>", "sheet <name>"
   const std::string &file;
@@ -556,18 +556,46 @@ PetscErrorCode WriteParticles(Simulation &sim, PetscViewer v) {
   PetscFunctionReturn(0);
 }
 
+// A chain's or a sheet's group, /<kind>/<k> (kind "chains" or "sheets").
+std::string PointSetGroup(const char *kind, size_t k) {
+  return std::string("/") + kind + "/" + std::to_string(k);
+}
+
+// Its identity, the name and the point count, written ...
+PetscErrorCode PutPointSetIdentity(PetscViewer v, const char *g, const std::string &name, int n) {
+  PetscFunctionBeginUser;
+  PetscCall(PutString(v, g, "name", name));
+  PetscCall(PutInt(v, g, "points", n));
+  PetscFunctionReturn(0);
+}
+
+// ... and read back: the checkpoint's k-th chain or sheet (kind "chain" or "sheet") must be this
+// run's, the same name with as many points.
+PetscErrorCode CheckPointSetIdentity(Simulation &sim, PetscViewer v, const std::string &file,
+                                     const char *kind, size_t k, const char *g,
+                                     const std::string &name, int n) {
+  std::string stored;
+  PetscInt npts;
+  PetscFunctionBeginUser;
+  PetscCall(GetString(v, g, "name", file, stored));
+  PetscCall(GetInt(v, g, "points", file, &npts));
+  PetscCheck(stored == name && npts == n, sim.comm, PETSC_ERR_USER_INPUT,
+             "-restart %s: the checkpoint's %s %d is %s with %d points, this run's %s with "
+             "%d (restart with the options files of the run that wrote it)",
+             file.c_str(), kind, (int)k, stored.c_str(), (int)npts, name.c_str(), n);
+  PetscFunctionReturn(0);
+}
+
 // /chains/<k> (every rank holds them alike: rank 0's are written).
 PetscErrorCode WriteChains(Simulation &sim, PetscViewer v) {
   PetscFunctionBeginUser;
   for (size_t k = 0; k < sim.chains.size(); ++k) {
     Chain &ch = sim.chains[k];
-    char g[32];
-    snprintf(g, sizeof(g), "/chains/%d", (int)k);
-    PetscCall(PutString(v, g, "name", ch.name));
-    PetscCall(PutInt(v, g, "points", ch.n));
-    PetscCall(ch.checkpoint_fields(AttrWriter{v, g}));
-    PetscCall(PetscViewerHDF5PushGroup(v, g));
-    PetscCall(ch.checkpoint_arrays(ChainArrayWriter{v}));
+    const std::string g = PointSetGroup("chains", k);
+    PetscCall(PutPointSetIdentity(v, g.c_str(), ch.name, ch.n));
+    PetscCall(ch.checkpoint_fields(AttrWriter{v, g.c_str()}));
+    PetscCall(PetscViewerHDF5PushGroup(v, g.c_str()));
+    PetscCall(ch.checkpoint_arrays(PointArrayWriter{v}));
     PetscCall(PetscViewerHDF5PopGroup(v));
   }
   PetscFunctionReturn(0);
@@ -578,12 +606,10 @@ PetscErrorCode WriteSheets(Simulation &sim, PetscViewer v) {
   PetscFunctionBeginUser;
   for (size_t k = 0; k < sim.sheets.size(); ++k) {
     Sheet &sh = sim.sheets[k];
-    char g[32];
-    snprintf(g, sizeof(g), "/sheets/%d", (int)k);
-    PetscCall(PutString(v, g, "name", sh.name));
-    PetscCall(PutInt(v, g, "points", sh.n));
-    PetscCall(PetscViewerHDF5PushGroup(v, g));
-    PetscCall(sh.checkpoint_arrays(ChainArrayWriter{v}));
+    const std::string g = PointSetGroup("sheets", k);
+    PetscCall(PutPointSetIdentity(v, g.c_str(), sh.name, sh.n));
+    PetscCall(PetscViewerHDF5PushGroup(v, g.c_str()));
+    PetscCall(sh.checkpoint_arrays(PointArrayWriter{v}));
     PetscCall(PetscViewerHDF5PopGroup(v));
   }
   PetscFunctionReturn(0);
@@ -825,22 +851,13 @@ PetscErrorCode ReadParticles(Simulation &sim, PetscViewer v, const std::string &
 
 // /chains/<k>: the same chain (name, points), its scalars and its arrays.
 PetscErrorCode ReadChain(Simulation &sim, PetscViewer v, const std::string &file, size_t k) {
-  const char *F = file.c_str();
   Chain &ch = sim.chains[k];
-  char g[32];
-  std::string cname;
-  PetscInt npts;
+  const std::string g = PointSetGroup("chains", k);
   PetscFunctionBeginUser;
-  snprintf(g, sizeof(g), "/chains/%d", (int)k);
-  PetscCall(GetString(v, g, "name", file, cname));
-  PetscCall(GetInt(v, g, "points", file, &npts));
-  PetscCheck(cname == ch.name && npts == ch.n, sim.comm, PETSC_ERR_USER_INPUT,
-             "-restart %s: the checkpoint's chain %d is %s with %d points, this run's %s with "
-             "%d (restart with the options files of the run that wrote it)",
-             F, (int)k, cname.c_str(), (int)npts, ch.name.c_str(), ch.n);
-  PetscCall(ch.checkpoint_fields(AttrReader{v, g, file}));
-  PetscCall(PetscViewerHDF5PushGroup(v, g));
-  PetscCall(ch.checkpoint_arrays(ChainArrayReader{v, "chain " + ch.name, file}));
+  PetscCall(CheckPointSetIdentity(sim, v, file, "chain", k, g.c_str(), ch.name, ch.n));
+  PetscCall(ch.checkpoint_fields(AttrReader{v, g.c_str(), file}));
+  PetscCall(PetscViewerHDF5PushGroup(v, g.c_str()));
+  PetscCall(ch.checkpoint_arrays(PointArrayReader{v, "chain " + ch.name, file}));
   PetscCall(PetscViewerHDF5PopGroup(v));
   PetscFunctionReturn(0);
 }
@@ -849,19 +866,11 @@ PetscErrorCode ReadChain(Simulation &sim, PetscViewer v, const std::string &file
 // and normals recomputed from them (as after a step).
 PetscErrorCode ReadSheet(Simulation &sim, PetscViewer v, const std::string &file, size_t k) {
   Sheet &sh = sim.sheets[k];
-  char g[32];
-  std::string name;
-  PetscInt npts;
+  const std::string g = PointSetGroup("sheets", k);
   PetscFunctionBeginUser;
-  snprintf(g, sizeof(g), "/sheets/%d", (int)k);
-  PetscCall(GetString(v, g, "name", file, name));
-  PetscCall(GetInt(v, g, "points", file, &npts));
-  PetscCheck(name == sh.name && npts == sh.n, sim.comm, PETSC_ERR_USER_INPUT,
-             "-restart %s: the checkpoint's sheet %d is %s with %d points, this run's %s with "
-             "%d (restart with the options files of the run that wrote it)",
-             file.c_str(), (int)k, name.c_str(), (int)npts, sh.name.c_str(), sh.n);
-  PetscCall(PetscViewerHDF5PushGroup(v, g));
-  PetscCall(sh.checkpoint_arrays(ChainArrayReader{v, "sheet " + sh.name, file}));
+  PetscCall(CheckPointSetIdentity(sim, v, file, "sheet", k, g.c_str(), sh.name, sh.n));
+  PetscCall(PetscViewerHDF5PushGroup(v, g.c_str()));
+  PetscCall(sh.checkpoint_arrays(PointArrayReader{v, "sheet " + sh.name, file}));
   PetscCall(PetscViewerHDF5PopGroup(v));
   sheet_update_forces(sh);
   sheet_normals(sh);
