@@ -10,26 +10,17 @@
 namespace pmpm {
 
 namespace {
-// A (rows, cols) dataset of doubles (cols == 1: shape (rows)) under loc.
-// Each returns true on failure.
-bool WriteDoubles(hid_t loc, const char *name, int rows, int cols, const double *data) {
+// A (rows, cols) dataset of `type` (cols == 1: shape (rows)) under loc; true on failure.
+bool WriteDataset(hid_t loc, const char *name, int rows, int cols, hid_t type, const void *data) {
   const hsize_t dims[2] = {static_cast<hsize_t>(rows), static_cast<hsize_t>(cols)};
   const hid_t space = H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr);
-  const hid_t d =
-      H5Dcreate2(loc, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  bool bad = d < 0 || H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0;
+  const hid_t d = H5Dcreate2(loc, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  bool bad = d < 0 || H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0;
   if (d >= 0) bad |= H5Dclose(d) < 0;
   return bad | (H5Sclose(space) < 0);
 }
-
-bool WriteInts(hid_t loc, const char *name, int rows, int cols, const int *data) {
-  const hsize_t dims[2] = {static_cast<hsize_t>(rows), static_cast<hsize_t>(cols)};
-  const hid_t space = H5Screate_simple(2, dims, nullptr);
-  const hid_t d =
-      H5Dcreate2(loc, name, H5T_NATIVE_INT, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  bool bad = d < 0 || H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0;
-  if (d >= 0) bad |= H5Dclose(d) < 0;
-  return bad | (H5Sclose(space) < 0);
+bool WriteDoubles(hid_t loc, const char *name, int rows, int cols, const double *data) {
+  return WriteDataset(loc, name, rows, cols, H5T_NATIVE_DOUBLE, data);
 }
 
 // One sheet's values for the files: per point (2 per point, major first) and per triangle.
@@ -157,7 +148,7 @@ PetscErrorCode OutputSheets(Simulation &sim) {
       const hid_t g = H5Gcreate2(top, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
       err |= g < 0;
       if (g < 0) break;
-      err |= WriteInts(g, "triangles", s.nt, 3, s.tri.data());
+      err |= WriteDataset(g, "triangles", s.nt, 3, H5T_NATIVE_INT, s.tri.data());
       err |= WriteDoubles(g, "position", s.n, 3, s.x.data());
       err |= WriteDoubles(g, "position0", s.n, 3, s.x0.data());
       err |= WriteDoubles(g, "displacement", s.n, 3, F.u.data());
