@@ -150,6 +150,16 @@ void sheet_rectangle(double x0, double dx, int nx, double z0, double dz, int nz,
   sheet_reference(s);
 }
 
+void sheet_lay(Sheet &s) {
+  s.x0 = s.x;
+  sheet_reference(s);
+  std::fill(s.bp.begin(), s.bp.end(), 0.0);
+  std::fill(s.alpha.begin(), s.alpha.end(), 0.0);
+  std::fill(s.slip_top.begin(), s.slip_top.end(), 0.0);
+  std::fill(s.slip_bot.begin(), s.slip_bot.end(), 0.0);
+  sheet_update_forces(s);
+}
+
 void sheet_reference(Sheet &s) {
   s.a0.assign(s.nt, 0.0);
   s.dinv.assign(4 * static_cast<size_t>(s.nt), 0.0);

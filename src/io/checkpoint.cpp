@@ -872,6 +872,12 @@ PetscErrorCode ReadSheet(Simulation &sim, PetscViewer v, const std::string &file
   PetscCall(PetscViewerHDF5PushGroup(v, g.c_str()));
   PetscCall(sh.checkpoint_arrays(PointArrayReader{v, "sheet " + sh.name, file}));
   PetscCall(PetscViewerHDF5PopGroup(v));
+  if (sh.in_contact()) { // its reference as laid (x0, checkpointed), its plastic state kept
+    const std::vector<double> bp = sh.bp, alpha = sh.alpha;
+    sheet_reference(sh);
+    sh.bp = bp;
+    sh.alpha = alpha;
+  }
   sheet_update_forces(sh);
   sheet_normals(sh);
   PetscFunctionReturn(0);

@@ -59,16 +59,27 @@ PetscErrorCode WriteCsv(const std::string &path, const Sheet &s, const SheetFiel
   PetscFunctionBeginUser;
   FILE *f = std::fopen((path + ".tmp").c_str(), "w");
   PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
-  std::fprintf(f, "x0,y0,z0,x,y,z,ux,uy,uz,strain_major,strain_minor,tension_major,"
-                  "tension_minor,pinned\n");
+  std::fprintf(f,
+               "x0,y0,z0,x,y,z,ux,uy,uz,strain_major,strain_minor,tension_major,"
+               "tension_minor,pinned%s\n",
+               s.in_contact() ? ",slip_top_x,slip_top_y,slip_top_z,slip_bottom_x,slip_bottom_y,"
+                                "slip_bottom_z,pressure_top,pressure_bottom"
+                              : "");
   for (int i = 0; i < s.n; ++i) {
     const double *x = &s.x[3 * static_cast<size_t>(i)], *x0 = &s.x0[3 * static_cast<size_t>(i)];
     std::fprintf(f,
                  "%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,"
-                 "%.15g,%d\n",
+                 "%.15g,%d",
                  x0[0], x0[1], x0[2], x[0], x[1], x[2], x[0] - x0[0], x[1] - x0[1], x[2] - x0[2],
                  F.strain[2 * i], F.strain[2 * i + 1], F.tension[2 * i], F.tension[2 * i + 1],
                  s.pinned[i] ? 1 : 0);
+    if (s.in_contact()) {
+      const double *a = &s.slip_top[3 * static_cast<size_t>(i)],
+                   *b = &s.slip_bot[3 * static_cast<size_t>(i)];
+      std::fprintf(f, ",%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g,%.15g", a[0], a[1], a[2], b[0],
+                   b[1], b[2], s.p_top[i], s.p_bot[i]);
+    }
+    std::fprintf(f, "\n");
   }
   std::fclose(f);
   PetscCheck(std::rename((path + ".tmp").c_str(), path.c_str()) == 0, PETSC_COMM_SELF,
@@ -107,9 +118,17 @@ std::string XdmfSheet(const Sheet &s, const std::string &name, double time) {
                         {"triangle_tension_minor", "Cell", s.nt, 1},
                         {"triangle_state", "Cell", s.nt, 1},
                         {"triangle_direction_major", "Cell", s.nt, 3},
-                        {"triangle_plastic_strain", "Cell", s.nt, 1}};
+                        {"triangle_plastic_strain", "Cell", s.nt, 1},
+                        {"slip_top", "Node", s.n, 3},
+                        {"slip_bottom", "Node", s.n, 3},
+                        {"pressure_top", "Node", s.n, 1},
+                        {"pressure_bottom", "Node", s.n, 1}};
   for (const Attr &a : attrs) {
     if (a.name == std::string("triangle_plastic_strain") && s.law != SheetLaw::Elastoplastic)
+      continue;
+    if ((a.name == std::string("slip_top") || a.name == std::string("slip_bottom") ||
+         a.name == std::string("pressure_top") || a.name == std::string("pressure_bottom")) &&
+        !s.in_contact())
       continue;
     char dims[64];
     snprintf(dims, sizeof(dims), a.comps > 1 ? "%d %d" : "%d", a.n, a.comps);
@@ -165,6 +184,12 @@ PetscErrorCode OutputSheets(Simulation &sim) {
       err |= WriteDoubles(g, "triangle_direction_major", s.nt, 3, F.direction.data());
       if (s.law == SheetLaw::Elastoplastic)
         err |= WriteDoubles(g, "triangle_plastic_strain", s.nt, 1, s.alpha.data());
+      if (s.in_contact()) { // a sheet between bodies: each face's slip (m) and pressure (Pa)
+        err |= WriteDoubles(g, "slip_top", s.n, 3, s.slip_top.data());
+        err |= WriteDoubles(g, "slip_bottom", s.n, 3, s.slip_bot.data());
+        err |= WriteDoubles(g, "pressure_top", s.n, 1, s.p_top.data());
+        err |= WriteDoubles(g, "pressure_bottom", s.n, 1, s.p_bot.data());
+      }
       err |= H5Gclose(g) < 0;
       xmf += XdmfSheet(s, name, sim.run.time);
     }

@@ -221,11 +221,12 @@ PetscErrorCode RebuildGrid3(Simulation &sim, const std::vector<PetscInt> &bx,
   const bool iface = sim.iface_grid.active;
   const double h = g.h, origin[3] = {g.origin[0], g.origin[1], g.origin[2]};
   const PetscInt ncell[3] = {g.ncell[0], g.ncell[1], g.ncell[2]};
+  const int nbody = g.nbody, extra = g.nd - g.nbody * GridDofT<3>::NDOF;
   PetscCall(ParticlesDestroy(sim.parts)); // the swarm holds a bare pointer to the DMDA
   PetscCall(InterfaceGridDestroy(sim.iface_grid));
   PetscCall(GridDestroy(g));
-  PetscCall(GridCreate<3>(sim.comm, h, origin, ncell, 1, 0, g, p[0], p[1], lx.data(), ly.data(),
-                          p[2], lz.data()));
+  PetscCall(GridCreate<3>(sim.comm, h, origin, ncell, nbody, extra, g, p[0], p[1], lx.data(),
+                          ly.data(), p[2], lz.data()));
   if (iface) PetscCall(InterfaceGridCreate(g, sim.iface_grid));
   PetscCall(ParticlesCreate(g, sim.parts));
   PetscFunctionReturn(0);

@@ -1,7 +1,9 @@
 // -dim 3: a 2D scene extruded along z (extrude.hpp).
 #include "pmpm/model/extrude.hpp"
 #include "pmpm/contact/interface.hpp"
+#include "pmpm/contact/sheet_contact.hpp"
 #include "pmpm/model/balance.hpp"
+#include "pmpm/scenes/scene_util.hpp"
 #include "pmpm/util/options.hpp"
 #include <cmath>
 
@@ -26,7 +28,9 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
   } refusals[] = {
       {s.solver != "relaxation", "-solver newton (use -solver relaxation)"},
       {s.geometry != Geometry::PlaneStrain, "-geometry axisymmetric"},
-      {!sim.model.chain_specs.empty(), "membrane chains"},
+      {!sim.model.chain_specs.empty() && !sim.scene->extrudes_chains(),
+       "this scene's membrane chains (its results read them in the plane; -scene pullout "
+       "extrudes its chain as a strip of 3D sheet)"},
   };
   for (const auto &r : refusals)
     PmpmCheckInput(!r.refused, sim.comm, PETSC_ERR_SUP, "-dim 3 does not run %s yet", r.what);
@@ -52,6 +56,63 @@ PetscErrorCode ExtrudeLoads(Simulation &sim) {
 }
 
 namespace {
+// Chain c as a strip of 3D sheet across the whole depth (extrude.hpp): checked, built, its
+// material, faces, pins and end force the chain's.
+PetscErrorCode SheetOfChain(Simulation &sim, const Chain &c, int k, int nbody, Sheet &st) {
+  PetscFunctionBeginUser;
+  const double h = sim.set.h;
+  const PetscInt nz = static_cast<PetscInt>(std::llround(sim.set.depth / h));
+  bool level = true;
+  for (int i = 1; i < c.n; ++i) level = level && c.x0[i * DIM + 1] == c.x0[1];
+  PmpmCheckInput(level && c.n >= 2, sim.comm, PETSC_ERR_SUP,
+                 "-dim 3: chain %s is extruded as a strip of 3D sheet, which needs a straight, "
+                 "level line for now (its points run from y = %g to %g m)",
+                 c.name.c_str(), c.x0[1], c.x0[(c.n - 1) * DIM + 1]);
+  // uniaxial J = E t is the sheet's E t / (1 - nu^2) only when nu = 0
+  PmpmCheckInput(c.stiffness == StiffnessKind::PlaneStrain || c.nu == 0, sim.comm, PETSC_ERR_SUP,
+                 "-mat_%s_axial_stiffness uniaxial with -mat_%s_nu %g: a 3D sheet is biaxial "
+                 "(J = E t / (1 - nu^2)); use plane_strain, or nu = 0",
+                 c.material.c_str(), c.material.c_str(), c.nu);
+  st = SheetMaterialOf(c);
+  st.name = c.name;
+  st.thickness = c.thickness;
+  const double x0 = c.x0[0], len = c.x0[(c.n - 1) * DIM] - x0;
+  const int nx = c.n, nzp = static_cast<int>(nz) + 1;
+  sheet_rectangle(x0, len / (nx - 1), nx, 0.0, h, nzp, c.x0[1], st);
+  st.held.assign(st.n, 0);
+  st.fend.assign(3 * static_cast<size_t>(st.n), 0.0);
+  // a point on a box face with a roller or fixed condition is held normal to it (the z faces'
+  // edge rows; a chain that runs from wall to wall, as a 3D cover's, on the x faces too)
+  const double lo[3] = {sim.model.origin[0], 0, 0},
+               hi[3] = {sim.model.origin[0] + sim.model.ncell[0] * h, 0, nz * h};
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < nzp; ++j) {
+      const int p = i * nzp + j;
+      st.pinned[p] = (i == 0 && c.pin[0]) || (i == nx - 1 && c.pin[1]);
+      for (int d = 0; d < 3; d += 2) {
+        const double X = st.x0[3 * static_cast<size_t>(p) + d];
+        if ((X == lo[d] && sim.model.face[2 * d] != FaceBC::Free) ||
+            (X == hi[d] && sim.model.face[2 * d + 1] != FaceBC::Free))
+          st.held[p] |= static_cast<char>(1 << d);
+      }
+      if (i == nx - 1) { // the end force per unit width, over the column by the points' widths
+        const double width = (j == 0 || j == nzp - 1) ? 0.5 * h : h;
+        for (int d = 0; d < DIM; ++d) st.fend[3 * p + d] = c.end_force[d] * width;
+      }
+    }
+  sheet_normals(st);
+  st.up = st.nrm[1] >= 0 ? 1.0 : -1.0; // the body above is the one at larger y
+  st.body = c.body;
+  st.slot = nbody * GridDofT<3>::NDOF + k * SheetDof::NDOF;
+  st.top = c.top;
+  st.bottom = c.bottom;
+  st.slip_top.assign(3 * static_cast<size_t>(st.n), 0.0);
+  st.slip_bot = st.slip_top;
+  st.p_top.assign(st.n, 0.0);
+  st.p_bot = st.p_top;
+  PetscFunctionReturn(0);
+}
+
 // The 2D scene's particles over the whole plane: the plane's grid is the box's cells, with no DM
 // (FillRegular and the scenes read its owned cells).
 PetscErrorCode GeneratePlane(Simulation &sim, ParticleList &plane) {
@@ -65,6 +126,7 @@ PetscErrorCode GeneratePlane(Simulation &sim, ParticleList &plane) {
     g.cell_hi[d] = sim.model.ncell[d];
   }
   PetscCall(sim.scene->generate(sim, plane));
+  if (!sim.chains.empty()) AssignBodies(sim, plane); // below / above the chains' lines
   // the plane's surface loads (per unit depth), a table every rank builds from its whole plane,
   // then each entry for a particle of z spacing dz: the force times dz, the face and the
   // half-size with their z components
@@ -115,7 +177,16 @@ PetscErrorCode ExtrudedGridAndParticles(Simulation &sim, const MemoryCheck &mem)
   PetscCall(CheckCells(sim.comm, "-depth", sim.set.depth, sim.set.h, &ncell[2]));
   PetscCall(CheckProcessGrid(sim, 3, ncell));
   PetscCall(CheckMemoryExtruded(sim, mem, ncell[2], 0));
-  PetscCall(GridCreate<3>(sim.comm, sim.set.h, origin, ncell, 1, 0, sim.grid3));
+  // the scene's chains as strips of sheet between its bodies
+  const int nchain = static_cast<int>(sim.chains.size());
+  const int nbody = nchain > 0 ? 2 * nchain + 1 : 1;
+  for (int k = 0; k < nchain; ++k) {
+    Sheet st;
+    PetscCall(SheetOfChain(sim, sim.chains[k], k, nbody, st));
+    sim.sheets.push_back(std::move(st));
+  }
+  PetscCall(
+      GridCreate<3>(sim.comm, sim.set.h, origin, ncell, nbody, nchain * SheetDof::NDOF, sim.grid3));
   sim.parts.affine = sim.set.transfer == Transfer::Apic; // APIC's B (affine.hpp)
   PetscCall(ParticlesCreate(sim.grid3, sim.parts));
   {
@@ -137,6 +208,7 @@ PetscErrorCode ExtrudedGridAndParticles(Simulation &sim, const MemoryCheck &mem)
     PetscCall(CheckMemoryExtruded(sim, mem, ncell[2], static_cast<PetscInt>(init.size())));
     PetscCall(ParticlesAdd(sim.parts, init));
   }
+  sim.chains.clear(); // the sheets stand for them from here on
   // the colour interface's body grid, beside the 3D grid as balanced (interface.hpp)
   if (sim.model.iface.type != InterfaceType::Bonded)
     PetscCall(InterfaceGridCreate(sim.grid3, sim.iface_grid));

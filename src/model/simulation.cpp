@@ -444,10 +444,6 @@ PetscErrorCode BuildLoadTable(Simulation &sim, ParticleList &init, MPI_Comm comm
   PetscFunctionReturn(0);
 }
 
-namespace {
-
-// With chains, a particle's body is 2 k, k the number of chains below its centre (a chain's
-// height at x by linear interpolation of its points, held level beyond its ends).
 void AssignBodies(const Simulation &sim, ParticleList &init) {
   for (auto &q : init) {
     int below = 0;
@@ -469,7 +465,6 @@ void AssignBodies(const Simulation &sim, ParticleList &init) {
     q.body = 2 * below;
   }
 }
-} // namespace
 
 namespace {
 // The solver's options, what it cannot solve, its own objects; under -help every solver's

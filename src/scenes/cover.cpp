@@ -28,6 +28,7 @@
 #include "pmpm/io/output.hpp"
 #include "pmpm/scenes/scene_util.hpp"
 #include "pmpm/scenes/veneer.hpp"
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -36,7 +37,8 @@
 namespace pmpm {
 
 namespace {
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
 constexpr int kMaxList = 16;
 
 struct Layer { // bottom-up in Layer order inside the scene
@@ -72,6 +74,7 @@ struct StageRow {
   double surface_settlement = 0, membrane_settlement = 0, differential = 0;
   double peak_strain = 0, peak_strain_x = 0, peak_tension = 0, slip = 0, cover_eps_p = 0;
   double void_pressure = 0, void_sag = 0; // on the sheet's top over the void; its sag there
+  double peak_strain_minor = 0, peak_strain_z = 0; // -dim 3: the biaxial state there, its z
   double ratio = 0, wall = 0;
   PetscInt steps = 0;
   bool converged = false;
@@ -83,6 +86,14 @@ double max_principal_strain(const double *F) {
                c12 = F[0] * F[1] + F[2] * F[3];
   const double m = 0.5 * (c11 + c22), d = std::sqrt(0.25 * (c11 - c22) * (c11 - c22) + c12 * c12);
   return std::sqrt(m + d) - 1.0;
+}
+
+// Largest principal stretch minus one of a 3x3 F (row-major).
+double max_principal_strain3(const double *F) {
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> f(F);
+  const Eigen::Matrix3d C = f.transpose() * f;
+  return std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C).eigenvalues().maxCoeff()) -
+         1.0;
 }
 
 // Names from a comma-separated string option (PetscOptionsStringArray's strings, freed).
@@ -150,6 +161,7 @@ class CoverScene final : public Scene {
   double shrink_total_ = 0;
   PetscInt shrink_stages_ = 0, shrink_steps_ = 0;
   double void_x_ = 0, void_h_ = 0, void_depth_ = 0;
+  double void_z_ = 0; // -dim 3: the round void's centre z
   std::vector<double> void_w_;
   double allowable_ = 0.03;
   double gauge_ = 0; // strain gauge length (m); 0: one cell
@@ -158,13 +170,16 @@ class CoverScene final : public Scene {
   std::vector<FaceType> face_types_; // the chains' own face types (top, bottom per chain)
   // derived
   double dxp_ = 0;                    // particle column spacing h / ppc
+  double h_ = 0;                      // the cell size
   PetscInt ncol_ = 0, R_ = 0;         // columns; pid stride per column
   std::vector<PetscInt> surface_pid_; // the top particle of each column (sorted)
   std::vector<char> cover_mat_;       // per material: a cover layer's
   std::vector<char> waste_mat_of_;    // per material: the waste's or a waste zone's
   double cum_shrink_ = 0, void_now_ = 0, void_eff_ = 0;
-  bool round_ = false; // -geometry axisymmetric with -cover_void_x 0: a round void (widths are
-                       // diameters)
+  bool dim3_ = false;  // -dim 3: the cover extruded along z, its membranes 3D sheets
+  PetscInt nzp_ = 0;   // -dim 3: particles along z (the extruded ids' stride)
+  bool round_ = false; // -geometry axisymmetric with -cover_void_x 0, or -dim 3: a round void
+                       // (widths are diameters)
   // references at the end of stage 0 (rank 0 for the surface; chains on every rank)
   std::map<PetscInt, double> surf_ref_;
   std::vector<double> sheet_ref_; // the reported (top-most) sheet's points at stage 0's end
@@ -192,6 +207,13 @@ class CoverScene final : public Scene {
     double y = ys(x);
     for (int j = 0; j < k; ++j) y += layers_[j].thickness(x, W_);
     return y;
+  }
+  // -dim 3: a round void of diameter `width` about (void_x_, void_z_) in plan
+  bool in_void3(const double X[3], double width) const {
+    if (width <= 0) return false;
+    const double top = ys(X[0]) - void_depth_;
+    return std::hypot(X[0] - void_x_, X[2] - void_z_) <= 0.5 * width && X[1] <= top &&
+           X[1] >= top - void_h_;
   }
   bool in_void(const double X[DIM], double width) const {
     if (width <= 0) return false;
@@ -281,6 +303,9 @@ class CoverScene final : public Scene {
                                    "(linear with height; 1,1: uniform)",
                                    nullptr, raw.gr, &raw.ng, &raw.gr_set));
     PetscCall(PmpmOptionsReal("-void_x", "Void centre x (m)", nullptr, void_x_, &void_x_, nullptr));
+    PetscCall(PmpmOptionsReal("-void_z",
+                              "-dim 3: the round void's centre z (m; its widths are diameters)",
+                              nullptr, void_z_, &void_z_, nullptr));
     PetscCall(PmpmOptionsRealArray("-void_widths",
                                    "Void width at each void stage (m, non-decreasing; none: no "
                                    "void)",
@@ -537,7 +562,28 @@ class CoverScene final : public Scene {
                      PETSC_ERR_ARG_OUTOFRANGE,
                      "-cover_void_widths must be positive and non-decreasing (entry %d: %g)",
                      (int)k, void_w_[k]);
-    if (!void_w_.empty()) {
+    dim3_ = sim.set.dim == 3;
+    if (dim3_) { // the sheets are level strips of 3D sheet for now (extrude.cpp)
+      bool level = true;
+      for (size_t k = 1; k < surf_.size() / 2; ++k) level = level && surf_[2 * k + 1] == surf_[1];
+      for (const Layer &l : layers_) level = level && l.t_start == l.t_end;
+      PmpmCheckInput(level, sim.comm, PETSC_ERR_SUP,
+                     "-dim 3: the cover's waste surface and layers must be level for now (no "
+                     "-cover_deck_grade, -cover_slope_*, sloping -cover_surface or tapered "
+                     "layers): its membranes are level 3D sheets");
+    }
+    if (!void_w_.empty() && dim3_) { // a round void about (x, z), widths its diameters
+      const double w = void_w_.back(), D = sim.set.depth;
+      round_ = true;
+      PmpmCheckInput((void_x_ == 0 || void_x_ - w / 2 > 0) && void_x_ + w / 2 < W_ &&
+                         (void_z_ == 0 || void_z_ - w / 2 > 0) && void_z_ + w / 2 < D,
+                     sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                     "-dim 3: -cover_void_x %g, -cover_void_z %g with diameter %g put the round "
+                     "void outside the box (0, %g) x (0, %g) (a centre at 0 is on a symmetry "
+                     "plane)",
+                     void_x_, void_z_, w, W_, D);
+    }
+    if (!void_w_.empty() && !dim3_) {
       const double w = void_w_.back();
       // under -geometry axisymmetric a void at x = 0 is round: its width is the diameter
       round_ = sim.set.geometry == Geometry::Axisymmetric && void_x_ == 0;
@@ -547,6 +593,8 @@ class CoverScene final : public Scene {
           "-cover_void_x %g with width %g puts the void outside (0, %g) (under -geometry "
           "axisymmetric, -cover_void_x 0 is a round void of that diameter)",
           void_x_, w, W_);
+    }
+    if (!void_w_.empty()) {
       PmpmCheckInput(void_h_ > 0 && void_depth_ >= 0 && void_depth_ + void_h_ < ys(void_x_),
                      sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                      "-cover_void_height %g (> 0) and -cover_void_depth %g (>= 0) must fit in the "
@@ -576,6 +624,7 @@ public:
   PetscErrorCode setup(Simulation &sim) override {
     PetscFunctionBeginUser;
     dxp_ = sim.set.h / sim.set.ppc;
+    h_ = sim.set.h;
     PetscCall(ReadOptions(sim));
     PetscCall(Validate(sim));
     // the box: the width (a whole number of cells) and the highest cover top plus headroom
@@ -646,15 +695,17 @@ public:
       cs.material = M.material;
       cs.thickness = M.thickness;
       const double e = 0.5 * sim.model.chain_spacing * sim.set.h;
-      const double e0 = sim.set.geometry == Geometry::Axisymmetric ? 0.0 : e;
+      // -dim 3: from wall to wall, its edges on the faces' rollers (extrude.cpp)
+      const double e0 = sim.set.geometry == Geometry::Axisymmetric || dim3_ ? 0.0 : e;
+      const double e1 = dim3_ ? 0.0 : e;
       cs.line = {e0, layer_base(M.layer, e0)};
       for (size_t k = 1; k + 1 < surf_.size() / 2; ++k)
         if (surf_[2 * k] > e && surf_[2 * k] < W_ - e) {
           cs.line.push_back(surf_[2 * k]);
           cs.line.push_back(layer_base(M.layer, surf_[2 * k]));
         }
-      cs.line.push_back(W_ - e);
-      cs.line.push_back(layer_base(M.layer, W_ - e));
+      cs.line.push_back(W_ - e1);
+      cs.line.push_back(layer_base(M.layer, W_ - e1));
       sim.model.chain_specs.push_back(cs);
     }
     // particle columns and their ids: column i holds at most R_ rows
@@ -703,6 +754,9 @@ public:
     PetscFunctionReturn(0);
   }
 
+  bool extrudes() const override { return true; }
+  bool extrudes_chains() const override { return true; } // -dim 3: level 3D sheets
+
   PetscInt stages() const override {
     return (shrink_total_ > 0 ? shrink_stages_ : 0) + static_cast<PetscInt>(void_w_.size());
   }
@@ -719,6 +773,7 @@ public:
         double none;
         PetscCall(SurfaceSettlement(sim, true, &none));
         if (!sim.chains.empty()) sheet_ref_ = sim.chains.back().x;
+        if (!sim.sheets.empty()) sheet_ref_ = sim.sheets.back().x;
       }
       face_types_.clear();
       for (Chain &c : sim.chains) {
@@ -726,13 +781,23 @@ public:
         face_types_.push_back(c.bottom.type);
         if (geostatic_paper_) c.top.type = c.bottom.type = FaceType::Paper;
       }
+      for (Sheet &c : sim.sheets) { // -dim 3: the same for the sheets
+        face_types_.push_back(c.top.type);
+        face_types_.push_back(c.bottom.type);
+        if (geostatic_paper_) c.top.type = c.bottom.type = FaceType::Paper;
+      }
       PetscFunctionReturn(0);
     }
-    if (k == 1)
+    if (k == 1) {
       for (size_t i = 0; i < sim.chains.size(); ++i) {
         sim.chains[i].top.type = face_types_[2 * i];
         sim.chains[i].bottom.type = face_types_[2 * i + 1];
       }
+      for (size_t i = 0; i < sim.sheets.size(); ++i) {
+        sim.sheets[i].top.type = face_types_[2 * i];
+        sim.sheets[i].bottom.type = face_types_[2 * i + 1];
+      }
+    }
     const PetscInt ns = shrink_total_ > 0 ? shrink_stages_ : 0;
     if (k <= ns) {
       sim.stage_shrink = shrink_total_ / double(ns);
@@ -752,17 +817,44 @@ public:
     std::vector<PetscInt> gone;
     PetscCall(ParticlesGetView(sim.parts, P));
     for (PetscInt p = 0; p < P.n; ++p)
-      if (waste_mat_of_[P.mat[p]] && in_void(P.x0 + p * DIM, void_now_)) gone.push_back(p);
+      if (waste_mat_of_[P.mat[p]] &&
+          (dim3_ ? in_void3(P.x0 + 3 * p, void_now_) : in_void(P.x0 + p * DIM, void_now_)))
+        gone.push_back(p);
     PetscCall(ParticlesRestoreView(sim.parts, P));
     for (auto it = gone.rbegin(); it != gone.rend(); ++it)
       PetscCall(DMSwarmRemovePointAtIndex(sim.parts.sw, *it));
     PetscCall(SimulationIndexParticles(sim));
+    if (dim3_) {
+      void_eff_ = RoundVoidDiameter(sim);
+      PetscFunctionReturn(0);
+    }
     // the void's width as the particles see it: whole columns
     PetscInt ncols = 0;
     for (PetscInt i = 0; i < ncol_; ++i)
       ncols += std::fabs((i + 0.5) * dxp_ - void_x_) <= 0.5 * void_now_;
     void_eff_ = (round_ ? 2.0 : 1.0) * ncols * dxp_; // round: the columns are the radius
     PetscFunctionReturn(0);
+  }
+
+  // -dim 3: the round void's diameter as the particles see it: the plan area of the particle
+  // columns whose centres lie inside it, over the share of its circle that lies in the box (a
+  // quarter for a void centred on two symmetry planes), read as a circle's.
+  double RoundVoidDiameter(const Simulation &sim) const {
+    const double dzp = sim.set.h / sim.set.ppc, D = void_now_;
+    double cols = 0, inside = 0;
+    const PetscInt nx = ncol_, nz = static_cast<PetscInt>(std::llround(sim.set.depth / dzp));
+    for (PetscInt i = 0; i < nx; ++i)
+      for (PetscInt k = 0; k < nz; ++k)
+        cols += std::hypot((i + 0.5) * dxp_ - void_x_, (k + 0.5) * dzp - void_z_) <= 0.5 * D;
+    const int n = 400; // the circle's share in the box, by a fine sampling of its square
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) {
+        const double u = ((a + 0.5) / n - 0.5) * D, v = ((b + 0.5) / n - 0.5) * D;
+        const double x = void_x_ + u, z = void_z_ + v;
+        inside += std::hypot(u, v) <= 0.5 * D && x >= 0 && x <= W_ && z >= 0 && z <= sim.set.depth;
+      }
+    const double share = inside / (kPi / 4 * n * n);
+    return 2 * std::sqrt(cols * dxp_ * dzp / share / kPi);
   }
 
   // Surface settlement per column relative to stage 0 (rank 0): gather the top particles.
@@ -772,7 +864,15 @@ public:
     std::vector<double> mine;
     PetscFunctionBeginUser;
     PetscCall(ParticlesGetView(sim.parts, P));
-    for (PetscInt p = 0; p < P.n; ++p)
+    if (dim3_) { // the extruded ids: the plane's id x particles along z + the z index
+      const PetscInt nz = sim.grid3.ncell[2] * sim.set.ppc;
+      for (PetscInt p = 0; p < P.n; ++p)
+        if (std::binary_search(surface_pid_.begin(), surface_pid_.end(), P.pid[p] / nz)) {
+          mine.push_back(static_cast<double>(P.pid[p]));
+          mine.push_back(P.x[3 * p + 1]);
+        }
+    }
+    for (PetscInt p = 0; p < P.n && !dim3_; ++p)
       if (std::binary_search(surface_pid_.begin(), surface_pid_.end(), P.pid[p])) {
         mine.push_back(static_cast<double>(P.pid[p]));
         mine.push_back(P.x[p * DIM + 1]);
@@ -800,7 +900,8 @@ public:
     for (PetscInt p = 0; p < P.n; ++p) {
       const int m = static_cast<int>(P.mat[p]);
       if (!cover_mat_[m]) continue;
-      mx[m] = std::fmax(mx[m], max_principal_strain(P.F + p * DIM * DIM));
+      mx[m] = std::fmax(mx[m], dim3_ ? max_principal_strain3(P.F + 9 * p)
+                                     : max_principal_strain(P.F + p * DIM * DIM));
       mx.back() = std::fmax(mx.back(), P.eps_p[p]);
     }
     PetscCall(ParticlesRestoreView(sim.parts, P));
@@ -820,9 +921,11 @@ public:
       FILE *f = std::fopen((path + ".tmp").c_str(), "w");
       PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
       std::fprintf(
-          f, "stage,kind,shrinkage,void_width,surface_settlement,membrane_settlement,"
-             "differential_settlement,peak_strain,peak_strain_x,peak_tension,max_slip,"
-             "cover_max_eps_p,void_pressure,void_sag,steps,ratio,converged,verdict,wall_seconds\n");
+          f,
+          "stage,kind,shrinkage,void_width,surface_settlement,membrane_settlement,"
+          "differential_settlement,peak_strain,peak_strain_x,peak_tension,max_slip,"
+          "cover_max_eps_p,void_pressure,void_sag,steps,ratio,converged,verdict,wall_seconds%s\n",
+          dim3_ ? ",peak_strain_minor,peak_strain_z" : "");
       // each stage's own verdict on its peak strain (no error estimate per stage): from the
       // first stage that stopped at its cap on, NOT CONVERGED
       bool capped = false;
@@ -833,11 +936,14 @@ public:
                                          : judge(q.peak_strain, 0.0, allowable_);
         std::fprintf(f,
                      "%d,%s,%.6g,%.6g,%.8e,%.8e,%.8e,%.8e,%.6g,%.8e,%.8e,%.8e,%.8e,%.8e,%d,%.3e,%d,"
-                     "%s,%.3f\n",
+                     "%s,%.3f",
                      q.stage, q.kind.c_str(), q.shrink, q.void_width, q.surface_settlement,
                      q.membrane_settlement, q.differential, q.peak_strain, q.peak_strain_x,
                      q.peak_tension, q.slip, q.cover_eps_p, q.void_pressure, q.void_sag,
                      (int)q.steps, q.ratio, q.converged ? 1 : 0, verdict_name(v), q.wall);
+        if (dim3_) // the biaxial state at the peak and its z
+          std::fprintf(f, ",%.8e,%.6g", q.peak_strain_minor, q.peak_strain_z);
+        std::fprintf(f, "\n");
       }
       std::fclose(f);
     }
@@ -845,10 +951,54 @@ public:
     PetscFunctionReturn(0);
   }
 
+  // -dim 3: a stage's membrane answers from the top-most sheet: settlement since the reference,
+  // the largest slip on either face, the peak principal strain of a point (sheet.hpp,
+  // sheet_peak_principal) with the minor strain there, and over the void its pressure and sag.
+  void SheetStage(const Sheet &s, StageRow &r) const {
+    double smax = -1e300, smin = 1e300;
+    for (int i = 0; i < s.n; ++i) {
+      const double d = sheet_ref_[3 * i + 1] - s.x[3 * i + 1];
+      smax = std::fmax(smax, d);
+      smin = std::fmin(smin, d);
+      r.slip = std::fmax(r.slip, std::fmax(SlipOf(s.slip_top, i), SlipOf(s.slip_bot, i)));
+    }
+    r.membrane_settlement = smax;
+    r.differential = smax - smin;
+    const PeakPrincipal pk = sheet_peak_principal(s);
+    r.peak_strain = pk.strain1;
+    r.peak_strain_minor = pk.strain2;
+    r.peak_strain_x = s.x0[3 * pk.point];
+    r.peak_strain_z = s.x0[3 * pk.point + 2];
+    r.peak_tension = pk.tension1;
+    if (r.void_width > 0) VoidPressureSag3(s, r.void_width, &r.void_pressure, &r.void_sag);
+  }
+  static double SlipOf(const std::vector<double> &sl, int i) {
+    return std::sqrt(sl[3 * i] * sl[3 * i] + sl[3 * i + 1] * sl[3 * i + 1] +
+                     sl[3 * i + 2] * sl[3 * i + 2]);
+  }
+  // -dim 3: the mean contact pressure on the sheet's top over the round void (area-weighted over
+  // its points inside it), and its sag: the settlement at the point nearest the void's centre less
+  // the mean at the points within a cell of its rim.
+  void VoidPressureSag3(const Sheet &s, double B, double *p, double *sag) const {
+    double a = 0, sr = 0, nr = 0, dc = 1e300, sc = 0;
+    const double h = h_;
+    *p = 0;
+    for (int i = 0; i < s.n; ++i) {
+      const double r = std::hypot(s.x0[3 * i] - void_x_, s.x0[3 * i + 2] - void_z_);
+      const double d = sheet_ref_[3 * i + 1] - s.x[3 * i + 1];
+      if (r < 0.5 * B) *p += s.p_top[i] * s.area[i], a += s.area[i];
+      if (r < dc) dc = r, sc = d;
+      if (std::fabs(r - 0.5 * B) < 0.5 * h) sr += d, nr += 1;
+    }
+    *p = a > 0 ? *p / a : 0;
+    *sag = nr > 0 ? sc - sr / nr : 0;
+  }
+
   PetscErrorCode end_stage(Simulation &sim, PetscInt k) override {
     PetscFunctionBeginUser;
     if (k == 0 && geostatic_) { // displacements from here on
       if (!sim.chains.empty()) sheet_ref_ = sim.chains.back().x;
+      if (!sim.sheets.empty()) sheet_ref_ = sim.sheets.back().x;
     }
     StageRow r;
     r.stage = static_cast<int>(k);
@@ -877,6 +1027,7 @@ public:
       r.peak_tension = pk.tension;
       if (r.void_width > 0) VoidPressureSag(c, r.void_width, &r.void_pressure, &r.void_sag);
     }
+    if (!sim.sheets.empty()) SheetStage(sim.sheets.back(), r); // -dim 3
     r.steps = sim.run.stage_step;
     r.ratio = sim.run.ratio;
     r.wall = sim.run.stage_seconds;
@@ -884,8 +1035,10 @@ public:
     rows_.push_back(r);
     // stage 0 is recorded as it is (a veneer's slip under its own weight, the strain the cover's
     // weight gave); then the membranes are laid unstrained on the settled ground
-    if (k == 0 && geostatic_)
+    if (k == 0 && geostatic_) {
       for (Chain &c : sim.chains) chain_lay(c);
+      for (Sheet &c : sim.sheets) sheet_lay(c);
+    }
     // the record so far, complete after every stage; a frame for ParaView
     PetscCall(WriteStages(sim));
     if (sim.nstages > 0) { // one frame per stage (stage 0 alone is particles.h5)
@@ -944,6 +1097,11 @@ public:
     PetscCall(CheckpointWriteArray(v, "surface_reference", ref)); // rank 0's
     PetscCall(CheckpointWriteArray(v, "sheet_reference", sheet_ref_));
     PetscCall(CheckpointWriteArray(v, "stage_rows", rows));
+    if (dim3_) { // -dim 3: each row's minor strain and z at the peak
+      std::vector<double> r3;
+      for (const StageRow &q : rows_) r3.insert(r3.end(), {q.peak_strain_minor, q.peak_strain_z});
+      PetscCall(CheckpointWriteArray(v, "stage_rows_3d", r3));
+    }
     PetscCall(CheckpointWriteReal(v, "shrinkage", cum_shrink_));
     PetscCall(CheckpointWriteReal(v, "void_width", void_now_));
     PetscCall(CheckpointWriteReal(v, "void_width_effective", void_eff_));
@@ -990,6 +1148,17 @@ public:
       r.steps = static_cast<PetscInt>(q[16]);
       r.converged = q[17] != 0;
       rows_.push_back(r);
+    }
+    if (dim3_) {
+      std::vector<double> r3;
+      PetscCall(CheckpointReadArray(v, "stage_rows_3d", r3));
+      PetscCheck(r3.size() == 2 * rows_.size(), sim.comm, PETSC_ERR_FILE_UNEXPECTED,
+                 "-restart %s: damaged checkpoint (the cover's 3D stage rows)",
+                 sim.set.restart.c_str());
+      for (size_t j = 0; j < rows_.size(); ++j) {
+        rows_[j].peak_strain_minor = r3[2 * j];
+        rows_[j].peak_strain_z = r3[2 * j + 1];
+      }
     }
     PetscFunctionReturn(0);
   }
@@ -1075,8 +1244,80 @@ public:
            false},
           {"differential_settlement", "differential settlement of the membrane",
            rows_.back().differential, 1, "m", false}};
-      PetscCall(ComparisonJson(sim, c, json));
+      double p = 0, sag = 0;
+      if (!void_w_.empty() && void_eff_ > 0) VoidPressureSag(c, void_eff_, &p, &sag);
+      PetscCall(ComparisonJson(sim, c.law.J, c.thickness, c.top.mu, p, sag, json));
     }
+    if (!sim.sheets.empty()) PetscCall(SheetResults(sim, json)); // -dim 3
+    PetscFunctionReturn(0);
+  }
+
+  // -dim 3: the top-most sheet's answers (results() above gives a chain's): the peak principal
+  // strain of a point with the minor strain there (the biaxial state) and where, its largest
+  // over the stages, the tensions, the largest slip on each face and where, the settlements;
+  // the design record; the closed forms beside them.
+  PetscErrorCode SheetResults(Simulation &sim, std::string &json) {
+    PetscFunctionBeginUser;
+    const char *sep = ",\n    ";
+    const Sheet &s = sim.sheets.back();
+    const PeakPrincipal pk = sheet_peak_principal(s);
+    double peak_hist = pk.strain1, tension_hist = pk.tension1;
+    int peak_stage = rows_.back().stage;
+    for (const StageRow &q : rows_) {
+      if (q.peak_strain > peak_hist) peak_hist = q.peak_strain, peak_stage = q.stage;
+      tension_hist = std::fmax(tension_hist, q.peak_tension);
+    }
+    int it = 0, ib = 0;
+    for (int i = 0; i < s.n; ++i) {
+      if (SlipOf(s.slip_top, i) > SlipOf(s.slip_top, it)) it = i;
+      if (SlipOf(s.slip_bot, i) > SlipOf(s.slip_bot, ib)) ib = i;
+    }
+    auto at = [&](const double *x) {
+      return "[" + json_num(x[0]) + ", " + json_num(x[1]) + ", " + json_num(x[2]) + "]";
+    };
+    json += sep + std::string("\"membrane\": {") + "\"name\": \"" + s.name + "\", " +
+            json_kv("peak_strain", pk.strain1) + ", " + json_kv("peak_strain_minor", pk.strain2) +
+            ", \"peak_at\": " + at(&s.x0[3 * pk.point]) + ", " +
+            json_kv("peak_strain_triangle", pk.triangle_strain1) + ", " +
+            json_kv("peak_strain_over_stages", peak_hist) + ", " +
+            json_kv("peak_strain_stage", double(peak_stage)) + ", " +
+            json_kv("peak_tension", pk.tension1) + ", " +
+            json_kv("peak_tension_minor", pk.tension2) + ", " +
+            json_kv("allowable_strain", allowable_) + ", " +
+            json_kv("max_slip_top", SlipOf(s.slip_top, it)) +
+            ", \"max_slip_top_at\": " + at(&s.x0[3 * it]) + ", " +
+            json_kv("max_slip_bottom", SlipOf(s.slip_bot, ib)) +
+            ", \"max_slip_bottom_at\": " + at(&s.x0[3 * ib]) + ", " +
+            json_kv("membrane_settlement", rows_.back().membrane_settlement) + ", " +
+            json_kv("differential_settlement", rows_.back().differential) + "}";
+    char line[384];
+    snprintf(line, sizeof(line),
+             "membrane %s: peak principal strain %.3f %% (minor %.3f %%) at (x, z) = (%.2f, "
+             "%.2f) m, tension %.4g kN/m",
+             s.name.c_str(), 100 * pk.strain1, 100 * pk.strain2, s.x0[3 * pk.point],
+             s.x0[3 * pk.point + 2], pk.tension1 / 1e3);
+    where_ = line;
+    if (peak_stage != rows_.back().stage) {
+      snprintf(line, sizeof(line), "; its largest over the stages %.3f %% at stage %d",
+               100 * peak_hist, peak_stage);
+      where_ += line;
+    }
+    design_ = DesignRecord{};
+    design_.has_check = true;
+    design_.allowable = allowable_;
+    design_.answers = {
+        {"peak_strain", "peak membrane strain (major principal)", peak_hist, 100, "%", true},
+        {"peak_tension", "peak membrane tension (major principal)", tension_hist, 1e-3, "kN/m",
+         false},
+        {"surface_settlement", "surface settlement", rows_.back().surface_settlement, 1, "m",
+         false},
+        {"membrane_settlement", "membrane settlement", rows_.back().membrane_settlement, 1, "m",
+         false},
+        {"differential_settlement", "differential settlement of the membrane",
+         rows_.back().differential, 1, "m", false}};
+    double p = 0, sag = 0;
+    if (!void_w_.empty() && void_eff_ > 0) VoidPressureSag3(s, void_eff_, &p, &sag);
+    PetscCall(ComparisonJson(sim, s.J, s.thickness, s.top.mu, p, sag, json));
     PetscFunctionReturn(0);
   }
 
@@ -1102,7 +1343,10 @@ public:
 
   // Closed forms for the same geometry: the void (Giroud with Terzaghi's arching) and the slope
   // (infinite slope, Koerner-Soong), with the simulated counterparts.
-  PetscErrorCode ComparisonJson(Simulation &sim, const Chain &c, std::string &json) {
+  // J, t: the membrane's stiffness and thickness; mu_top its upper face's friction; p, sag: its
+  // pressure and sag over the void (VoidPressureSag, VoidPressureSag3).
+  PetscErrorCode ComparisonJson(Simulation &sim, double J, double thickness, double mu_top,
+                                double p, double sag, std::string &json) {
     PetscFunctionBeginUser;
     const char *sep = ",\n    ";
     const Membrane &M = mem_.back();
@@ -1126,9 +1370,7 @@ public:
     if (!void_w_.empty() && void_eff_ > 0) {
       double H, gamma;
       above(void_x_, H, gamma);
-      const double B = void_eff_, J = c.law.J;
-      double p, sag;
-      VoidPressureSag(c, B, &p, &sag);
+      const double B = void_eff_;
       std::string g = "{" + json_kv("B", B) + ", " + json_kv("H", H) + ", " +
                       json_kv("gamma", gamma) + ", " + json_kv("J", J) + ", " +
                       json_kv("pmpm_pressure", p) + ", " + json_kv("pmpm_sag", sag) + ", " +
@@ -1147,8 +1389,8 @@ public:
       }
       try {
         const auto gs =
-            round_ ? giroud::self_consistent_round(gamma, B, H, 0.0, c.thickness, J / c.thickness)
-                   : giroud::self_consistent(gamma, B, H, 0.0, c.thickness, J / c.thickness);
+            round_ ? giroud::self_consistent_round(gamma, B, H, 0.0, thickness, J / thickness)
+                   : giroud::self_consistent(gamma, B, H, 0.0, thickness, J / thickness);
         g += ", " + json_kv("giroud_pressure", gs.pressure) + ", " +
              json_kv("giroud_strain", gs.strain) + ", " + json_kv("giroud_sag", gs.sag) + ", " +
              json_kv("giroud_tension", gs.tension);
@@ -1161,7 +1403,7 @@ public:
       const double beta = slope_deg_ * kDeg;
       const double xm = toe_x_ + 0.5 * slope_len_ * std::cos(beta);
       above(xm, H, gamma);
-      const double delta = std::atan(c.top.mu), h = H * std::cos(beta); // normal thickness
+      const double delta = std::atan(mu_top), h = H * std::cos(beta); // normal thickness
       json +=
           sep + std::string("\"slope\": {") + json_kv("beta", slope_deg_) + ", " +
           json_kv("delta", delta / kDeg) + ", " + json_kv("phi", phi) + ", " +

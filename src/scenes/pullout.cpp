@@ -168,22 +168,86 @@ public:
     PetscFunctionReturn(0);
   }
 
+  bool extrudes() const override { return true; }
+  bool extrudes_chains() const override { return true; } // -dim 3: a strip across the depth
+
+  // The sheet's state for the history and the answers, from the chain (2D) or from the strip of
+  // 3D sheet (-dim 3; per unit width, over the depth): per point its initial x and its x slip on
+  // each face; the friction on it against the pull; the pulled end's u_x (the mean of its
+  // column); sum T l0 (the tension triangle's area); the last segment's tension; per point the
+  // pressures and the length (area over the width) each stands for; the pulled end's x.
+  struct SheetState {
+    std::vector<double> X, slip_top, slip_bot, p_top, p_bot, length;
+    double friction = 0, u_end = 0, area = 0, T_end = 0, x_end = 0, J = 0, mu_t = 0, mu_b = 0;
+  };
+  SheetState State(const Simulation &sim) const {
+    SheetState q;
+    if (!sim.chains.empty()) {
+      const Chain &c = sim.chains[0];
+      const int e = c.n - 1;
+      for (int i = 0; i < c.n; ++i) q.X.push_back(c.x0[i * DIM]);
+      q.slip_top = c.slip_top;
+      q.slip_bot = c.slip_bot;
+      q.p_top = c.p_top;
+      q.p_bot = c.p_bot;
+      q.length = c.length;
+      q.friction = -c.friction_force;
+      q.u_end = c.x[e * DIM] - c.x0[e * DIM];
+      q.x_end = c.x[e * DIM];
+      for (int k = 0; k + 1 < c.n; ++k) q.area += c.T[k] * c.l0[k];
+      q.T_end = c.T[c.n - 2];
+      q.J = c.law.J, q.mu_t = c.top.mu, q.mu_b = c.bottom.mu;
+      return q;
+    }
+    const Sheet &s = sim.sheets[0];
+    const double W = sim.set.depth, ex[3] = {1, 0, 0}, ez[3] = {0, 0, 1};
+    for (int i = 0; i < s.n; ++i) {
+      q.X.push_back(s.x0[3 * i]);
+      q.slip_top.push_back(s.slip_top[3 * i]);
+      q.slip_bot.push_back(s.slip_bot[3 * i]);
+      q.p_top.push_back(s.p_top[i]);
+      q.p_bot.push_back(s.p_bot[i]);
+      q.length.push_back(s.area[i] / W);
+    }
+    if (!sim.contact_stats.friction3.empty()) q.friction = -sim.contact_stats.friction3[0] / W;
+    const double xe0 = s.x0[3 * (s.n - 1)];
+    double n_end = 0, a_end = 0;
+    for (int i = 0; i < s.n; ++i)
+      if (s.x0[3 * i] == xe0) {
+        q.u_end += s.x[3 * i] - s.x0[3 * i];
+        q.x_end += s.x[3 * i];
+        n_end += 1;
+      }
+    q.u_end /= n_end;
+    q.x_end /= n_end;
+    for (int t = 0; t < s.nt; ++t) {
+      const double Nx = s.J * (sheet_strain_along(s, t, ex) + s.nu * sheet_strain_along(s, t, ez));
+      q.area += Nx * s.a0[t] / W;
+      double cx = 0;
+      for (int a = 0; a < 3; ++a) cx = std::fmax(cx, s.x0[3 * s.tri[3 * t + a]]);
+      if (cx == xe0) q.T_end += Nx * s.a0[t], a_end += s.a0[t];
+    }
+    q.T_end /= a_end;
+    q.J = s.J, q.mu_t = s.top.mu, q.mu_b = s.bottom.mu;
+    return q;
+  }
+
   PetscErrorCode monitor(Simulation &sim) override {
-    if (sim.run.step == 0 || sim.chains.empty()) return 0;
-    const Chain &c = sim.chains[0];
+    if (sim.run.step == 0 || (sim.chains.empty() && sim.sheets.empty())) return 0;
+    const SheetState q = State(sim);
+    const size_t n = q.X.size();
     time_.push_back(sim.run.time);
-    fric_.push_back(-c.friction_force);
-    uend_.push_back(c.x[(c.n - 1) * DIM] - c.x0[(c.n - 1) * DIM]);
+    fric_.push_back(q.friction);
+    uend_.push_back(q.u_end);
     bool all = !slip_prev_.empty();
-    const double xs = c.x0[0], h = sim.set.h;
-    for (int i = 0; all && i < c.n; ++i) {
-      const double X = c.x0[i * DIM];
-      if (X < xs + h || X > xend0_ - h) continue;
-      all = c.slip_top[i] > slip_prev_[i] && c.slip_bot[i] > slip_prev_[c.n + i];
+    const double xs = q.X[0], h = sim.set.h;
+    for (size_t i = 0; all && i < n; ++i) {
+      if (q.X[i] < xs + h || q.X[i] > xend0_ - h) continue;
+      all = q.slip_top[i] > slip_prev_[i] && q.slip_bot[i] > slip_prev_[n + i];
     }
     sliding_.push_back(all);
-    slip_prev_.assign(c.slip_top.begin(), c.slip_top.end());
-    slip_prev_.insert(slip_prev_.end(), c.slip_bot.begin(), c.slip_bot.end());
+    slip_prev_.assign(q.slip_top.begin(), q.slip_top.end());
+    slip_prev_.insert(slip_prev_.end(), q.slip_bot.begin(), q.slip_bot.end());
     return 0;
   }
 
@@ -208,26 +272,23 @@ public:
 
   PetscErrorCode results(Simulation &sim, std::string &json) override {
     PetscFunctionBeginUser;
-    const Chain &c = sim.chains[0];
-    const double mu_t = c.top.mu, mu_b = c.bottom.mu, J = c.law.J;
+    const SheetState q = State(sim);
+    const double mu_t = q.mu_t, mu_b = q.mu_b, J = q.J;
     const double m = (mu_t + mu_b) * p_, capacity = m * L_;
     const bool out = P_ > capacity;
     const double xa_exact = m > 0 ? std::fmin(P_ / m, L_) : L_;
     const double u0_exact = out || m <= 0 ? NAN : P_ * P_ / (2 * m * J);
     // the tension triangle: its area sum T l0 = P x_a / 2
-    double area = 0;
-    for (int k = 0; k + 1 < c.n; ++k) area += c.T[k] * c.l0[k];
-    const double xa = P_ > 0 ? 2 * area / P_ : 0.0;
-    const int e = c.n - 1;
-    const double u_end = c.x[e * DIM] - c.x0[e * DIM];
+    const double xa = P_ > 0 ? 2 * q.area / P_ : 0.0;
+    const double u_end = q.u_end;
     // contact pressure on each face, length-weighted over the points two cells or more from
     // the ends (at the ends a node's whole normal force is divided by a part of a sheet length)
     double pt = 0, pb = 0, len = 0;
-    const double h = sim.set.h, xs = c.x0[0];
-    for (int i = 0; i < c.n; ++i) {
-      const double X = c.x0[i * DIM];
+    const double h = sim.set.h, xs = q.X[0];
+    for (size_t i = 0; i < q.X.size(); ++i) {
+      const double X = q.X[i];
       if (X < xs + 2 * h || X > xend0_ - 2 * h) continue;
-      pt += c.p_top[i] * c.length[i], pb += c.p_bot[i] * c.length[i], len += c.length[i];
+      pt += q.p_top[i] * q.length[i], pb += q.p_bot[i] * q.length[i], len += q.length[i];
     }
     // friction: the last step; the mean over the last quarter of the steps after the ramp; the
     // mean over the steps after the ramp in which the whole sheet slid (after a kinetic-damping
@@ -252,14 +313,14 @@ public:
            "\"pulled_out\": " + (out ? "true" : "false") + sep +
            json_kv("end_displacement", u_end) + sep + json_kv("end_displacement_exact", u0_exact) +
            sep + json_kv("anchored_length", xa) + sep + json_kv("anchored_length_exact", xa_exact) +
-           sep + json_kv("end_segment_tension", c.T[c.n - 2]) + sep +
+           sep + json_kv("end_segment_tension", q.T_end) + sep +
            json_kv("friction_force", nf ? fric_.back() : 0.0) + sep +
            json_kv("friction_force_mean", fmean) + sep + json_kv("friction_force_sliding", fslide) +
            sep + json_kv("sliding_steps", nslide) + sep +
            json_kv("steps_after_ramp", nf > r0 ? double(nf - r0) : 0.0) + sep +
            json_kv("contact_pressure_top", len > 0 ? pt / len : NAN) + sep +
            json_kv("contact_pressure_bottom", len > 0 ? pb / len : NAN) + sep +
-           json_kv("end_clearance_cells", (W - c.x[e * DIM]) / h) + sep +
+           json_kv("end_clearance_cells", (W - q.x_end) / h) + sep +
            json_kv("slip_nodes", sim.contact_stats.slip_nodes);
     PetscFunctionReturn(0);
   }

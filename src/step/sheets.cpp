@@ -2,8 +2,10 @@
 // forces into the grid's nodes, the points moved by the owner of their cell and shared by one
 // allreduce, their forces from the new positions, and their share of the step's report. Points
 // may be pinned, or held in some components (rollers: the extruded catenary's free edges). A
-// sheet is alone on the grid for now (the sheet and extruded catenary scenes): it is the grid's
-// only body; its contact with bodies on its faces (contact_stack3) is the next step of issue 23.
+// sheet alone on the grid (the sheet and extruded catenary scenes) is the grid's only body; a
+// sheet between bodies (an extruded scene's chain, extrude.cpp) is a body of its own, and the
+// stacked bodies at its nodes are resolved after the momentum balance (sheet_contact.hpp).
+#include "pmpm/contact/sheet_contact.hpp"
 #include "pmpm/step/step_hooks.hpp"
 #include <cmath>
 
@@ -17,15 +19,26 @@ bool Active(const Simulation &sim, const Load &) {
   return !sim.sheets.empty();
 }
 
-// The cell holding x (may lie outside the box).
+// The cell holding x (may lie outside the box); a point on the box's upper face (an extruded
+// strip's edge at z = depth) is in the last cell.
 void CellOf(const GridViewT<3> &G, const double *x, PetscInt c[3]) {
-  for (int d = 0; d < 3; ++d) c[d] = static_cast<PetscInt>(std::floor((x[d] - G.origin[d]) / G.h));
+  for (int d = 0; d < 3; ++d) {
+    c[d] = static_cast<PetscInt>(std::floor((x[d] - G.origin[d]) / G.h));
+    if (c[d] == G.ncell[d] && x[d] == G.origin[d] + G.ncell[d] * G.h) c[d] = G.ncell[d] - 1;
+  }
 }
+
+bool InContact(const Simulation &sim) {
+  for (const Sheet &s : sim.sheets)
+    if (s.in_contact()) return true;
+  return false;
+}
+} // namespace
 
 // Point i's uGIMP weights: a square patch of the sheet one cell wide in its tangent plane, thin
 // across it (the chain's one-cell blocks, chain.cpp, with the axis extents of the patch), kept
 // inside the box.
-void PointWeights(const Sheet &s, int i, const GridViewT<3> &G, Weights<UGIMPShape, 3> &W) {
+void sheet_point_weights(const Sheet &s, int i, const GridViewT<3> &G, Weights<UGIMPShape, 3> &W) {
   const double *x = &s.x[3 * static_cast<size_t>(i)], *n = &s.nrm[3 * static_cast<size_t>(i)];
   double lp[3];
   for (int d = 0; d < 3; ++d) {
@@ -36,16 +49,20 @@ void PointWeights(const Sheet &s, int i, const GridViewT<3> &G, Weights<UGIMPSha
   weights<UGIMPShape, 3>(x, lp, G.origin, G.h, W);
 }
 
+namespace {
+
 // 1a. The points this rank owns (not pinned): mass, momentum, internal force and weight into the
-//     grid's body block.
+//     grid's body block (the sheet's own block when it lies between bodies, with its normal and
+//     area in its slots).
 void P2GSheet(const Sheet &s, const LoadT<3> &load, const GridT<3> &g, const GridViewT<3> &G) {
   Weights<UGIMPShape, 3> W;
+  const int body = s.body * G3::NDOF;
   for (int i = 0; i < s.n; ++i) {
     const double *x = &s.x[3 * static_cast<size_t>(i)];
     PetscInt c[3];
     CellOf(G, x, c);
     if (s.pinned[i] || !g.owns_cell(c)) continue;
-    PointWeights(s, i, G, W);
+    sheet_point_weights(s, i, G, W);
     const double m = s.mass[i], wt = load.factor * s.weight[i];
     // a held component's forces meet its support's reaction: none reach the grid
     double fext[3], fint[3];
@@ -53,17 +70,25 @@ void P2GSheet(const Sheet &s, const LoadT<3> &load, const GridT<3> &g, const Gri
       const bool hold = !s.held.empty() && (s.held[i] >> d & 1);
       fext[d] = hold ? 0.0 : wt * load.gdir[d];
       fint[d] = hold ? 0.0 : s.f[3 * i + d];
+      if (!s.fend.empty() && !hold) fext[d] += load.factor * s.fend[3 * i + d];
     }
+    const double *nrm = &s.nrm[3 * static_cast<size_t>(i)];
     for (int k = 0; k < NN; ++k) {
       const double w = W.w[k];
       if (w == 0.0) continue;
-      double *nb = G.node(W.base[0] + k % NS, W.base[1] + (k / NS) % NS, W.base[2] + k / (NS * NS));
+      double *node =
+          G.node(W.base[0] + k % NS, W.base[1] + (k / NS) % NS, W.base[2] + k / (NS * NS));
+      double *nb = node + body;
       nb[G3::M] += w * m;
       for (int d = 0; d < 3; ++d) {
         nb[G3::P + d] += w * m * s.v[3 * i + d];
         nb[G3::F + d] += w * (fint[d] + fext[d]);
         nb[G3::FEXT + d] += w * fext[d];
       }
+      if (!s.in_contact()) continue;
+      double *ns = node + s.slot;
+      for (int d = 0; d < 3; ++d) ns[SheetDof::NX + d] += w * m * s.up * nrm[d];
+      ns[SheetDof::AREA] += w * s.area[i];
     }
   }
 }
@@ -79,30 +104,76 @@ PetscErrorCode ParticlesToGrid(StepStateT<3> &S) {
 }
 
 // 5a. The owner of each point's cell moves it (the grid's velocity and acceleration at the point,
-//     FLIP / PIC as the chains', -chain_pic); buf gets x, v and 1 for the points it owns, zeros
-//     for the others.
+//     FLIP / PIC as the chains', -chain_pic); buf gets, for the points it owns, x, v and 1, and
+//     for a sheet between bodies the slip on each face and the pressure on each face (PackWidth);
+//     zeros for the others.
+int PackWidth(const Sheet &s) {
+  return s.in_contact() ? 15 : 7;
+}
+
+// Point i's slips and pressures from the bodies beside it (a sheet between bodies): the slip
+// rate on a face is the mean over the stencil's nodes where that body has mass of the sheet's
+// velocity relative to it, its part in the sheet's plane (the chain's rule, g2p_chain); the
+// pressure is the point's share of its nodes' normal impulses, w A_i / AREA of each, over A_i dt.
+void FaceSlipsAndPressures(const Sheet &s, int i, const GridViewT<3> &G,
+                           const Weights<UGIMPShape, 3> &W, double dt, double *out) {
+  constexpr int ND = G3::NDOF;
+  const int body = s.body * ND, above = body + ND, below = body - ND;
+  const double *n = &s.nrm[3 * static_cast<size_t>(i)];
+  double va[3] = {0, 0, 0}, vb[3] = {0, 0, 0}, ma = 0, mb = 0, nt = 0, nbt = 0;
+  for (int k = 0; k < NN; ++k) {
+    const double w = W.w[k];
+    if (w == 0.0) continue;
+    const double *node =
+        G.node(W.base[0] + k % NS, W.base[1] + (k / NS) % NS, W.base[2] + k / (NS * NS));
+    const double *nc = node + body, *na = node + above, *nb = node + below, *ns = node + s.slot;
+    if (na[G3::M] > 0) {
+      for (int d = 0; d < 3; ++d) va[d] += w * (nc[G3::P + d] - na[G3::P + d]);
+      ma += w;
+    }
+    if (nb[G3::M] > 0) {
+      for (int d = 0; d < 3; ++d) vb[d] += w * (nc[G3::P + d] - nb[G3::P + d]);
+      mb += w;
+    }
+    const double share = ns[SheetDof::AREA] > 0 ? w / ns[SheetDof::AREA] : 0.0;
+    nt += share * ns[SheetDof::NTOP];
+    nbt += share * ns[SheetDof::NBOT];
+  }
+  const double *st = &s.slip_top[3 * static_cast<size_t>(i)],
+               *sb = &s.slip_bot[3 * static_cast<size_t>(i)];
+  const double an = ma > 0 ? (va[0] * n[0] + va[1] * n[1] + va[2] * n[2]) : 0.0,
+               bn = mb > 0 ? (vb[0] * n[0] + vb[1] * n[1] + vb[2] * n[2]) : 0.0;
+  for (int d = 0; d < 3; ++d) {
+    out[d] = st[d] + (ma > 0 ? dt * (va[d] - an * n[d]) / ma : 0.0);
+    out[3 + d] = sb[d] + (mb > 0 ? dt * (vb[d] - bn * n[d]) / mb : 0.0);
+  }
+  out[6] = nt / dt;
+  out[7] = nbt / dt;
+}
+
 void G2PSheet(const Sheet &s, const GridT<3> &g, const GridViewT<3> &G, double dt, double pic,
               std::vector<double> &buf) {
   Weights<UGIMPShape, 3> W;
-  buf.assign(7 * static_cast<size_t>(s.n), 0.0);
+  const int pw = PackWidth(s), body = s.body * G3::NDOF;
+  buf.assign(pw * static_cast<size_t>(s.n), 0.0);
   for (int i = 0; i < s.n; ++i) {
     const double *x = &s.x[3 * static_cast<size_t>(i)], *v = &s.v[3 * static_cast<size_t>(i)];
     PetscInt c[3];
     CellOf(G, x, c);
     if (!g.owns_cell(c)) continue;
-    double *out = &buf[7 * static_cast<size_t>(i)];
+    double *out = &buf[pw * static_cast<size_t>(i)];
     out[6] = 1.0;
     if (s.pinned[i]) {
       for (int d = 0; d < 3; ++d) out[d] = x[d];
       continue;
     }
-    PointWeights(s, i, G, W);
+    sheet_point_weights(s, i, G, W);
     double vg[3] = {0, 0, 0}, ag[3] = {0, 0, 0};
     for (int k = 0; k < NN; ++k) {
       const double w = W.w[k];
       if (w == 0.0) continue;
       const double *nb =
-          G.node(W.base[0] + k % NS, W.base[1] + (k / NS) % NS, W.base[2] + k / (NS * NS));
+          G.node(W.base[0] + k % NS, W.base[1] + (k / NS) % NS, W.base[2] + k / (NS * NS)) + body;
       for (int d = 0; d < 3; ++d) {
         vg[d] += w * nb[G3::P + d];
         ag[d] += w * nb[G3::F + d];
@@ -116,6 +187,7 @@ void G2PSheet(const Sheet &s, const GridT<3> &g, const GridViewT<3> &G, double d
         out[3 + d] = 0.0;
       }
     }
+    if (s.in_contact()) FaceSlipsAndPressures(s, i, G, W, dt, out + 7);
   }
 }
 
@@ -131,13 +203,22 @@ PetscErrorCode GridToPoints(StepStateT<3> &S) {
         GridWithLocal(g, false, [&](const GridViewT<3> &G) { G2PSheet(s, g, G, S.dt, pic, buf); }));
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE,
                                MPI_SUM, sim.comm));
+    const int pw = PackWidth(s);
     int owners = 0;
     for (int i = 0; i < s.n; ++i) {
-      const double *b = &buf[7 * static_cast<size_t>(i)];
+      const double *b = &buf[pw * static_cast<size_t>(i)];
       owners += b[6] == 1.0;
       for (int d = 0; d < 3; ++d) {
         s.x[3 * i + d] = b[d];
         s.v[3 * i + d] = b[3 + d];
+      }
+      if (s.in_contact() && !s.pinned[i]) {
+        for (int d = 0; d < 3; ++d) {
+          s.slip_top[3 * i + d] = b[7 + d];
+          s.slip_bot[3 * i + d] = b[10 + d];
+        }
+        s.p_top[i] = b[13];
+        s.p_bot[i] = b[14];
       }
       PetscCheck(std::isfinite(b[0] + b[1] + b[2] + b[3] + b[4] + b[5]), sim.comm,
                  PETSC_ERR_NOT_CONVERGED,
@@ -156,11 +237,56 @@ PetscErrorCode GridToPoints(StepStateT<3> &S) {
   PetscFunctionReturn(0);
 }
 
-// 7. Their kinetic energy, speeds and load power from the points every rank holds (added once).
+// 3a. Stacked bodies at the nodes of the sheets between bodies: the normal impulses, their
+//     ghosts, the friction capacity they give each face, then the contact (chains.cpp's Contact).
+PetscErrorCode Contact(StepStateT<3> &S) {
+  Simulation &sim = S.sim;
+  GridT<3> &g = sim.grid3;
+  PetscFunctionBeginUser;
+  if (!InContact(sim)) PetscFunctionReturn(0);
+  PmpmLogEventScope(step_events.contact);
+  SheetContactParams cp;
+  cp.dt = S.dt;
+  cp.tail_share = sim.model.iface.tail_share;
+  cp.chain_tail_share = sim.model.contact.chain_tail_share;
+  for (int f = 0; f < 6; ++f) cp.face[f] = sim.model.face[f];
+  contact_sheets(S.G, sim.sheets, cp, true, S.rep.contact);
+  PetscCall(GridRestoreGlobal(g, S.G));
+  PetscCall(GridGlobalToLocal(g));
+  PetscCall(GridWithLocal(g, false, [&](const GridViewT<3> &L) -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(GridGetGlobal(g, S.G)); // the step's global view, again for the contact below
+    sheet_friction_capacity(L, S.G, sim.sheets);
+    PetscFunctionReturn(0);
+  }));
+  contact_sheets(S.G, sim.sheets, cp, false, S.rep.contact);
+  PetscFunctionReturn(0);
+}
+
+// 7. Their contact sums over ranks (sheets between bodies); their kinetic energy, speeds and
+//    load power from the points every rank holds (added once).
 PetscErrorCode Reductions(StepState &S) {
   Simulation &sim = S.sim;
   StepReport &rep = S.rep;
   PetscFunctionBeginUser;
+  if (InContact(sim)) {
+    ContactStats &cs = rep.contact;
+    cs.friction3.resize(3 * sim.sheets.size(), 0.0);
+    std::vector<double> sm = {cs.contact_nodes, cs.slip_nodes, cs.separated_nodes, cs.compression,
+                              cs.tension};
+    sm.insert(sm.end(), cs.friction3.begin(), cs.friction3.end());
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm.data(), static_cast<int>(sm.size()), MPI_DOUBLE,
+                               MPI_SUM, sim.comm));
+    cs.contact_nodes = sm[0];
+    cs.slip_nodes = sm[1];
+    cs.separated_nodes = sm[2];
+    cs.compression = sm[3];
+    cs.tension = sm[4];
+    cs.friction3.assign(sm.begin() + 5, sm.end());
+    sim.contact_stats = cs;
+    sim.contact_impulse[0] += cs.compression;
+    sim.contact_impulse[1] += cs.tension;
+  }
   double ke = 0, v2 = 0, c = 0, pw = 0;
   const double gz = sim.set.gdir_z;
   for (const Sheet &s : sim.sheets) {
@@ -172,6 +298,8 @@ PetscErrorCode Reductions(StepState &S) {
       v2 = std::fmax(v2, s2);
       // at full weight: the budget multiplies by the load factor (relaxation.cpp, LoadWork)
       pw += s.weight[i] * (S.load.gdir[0] * v[0] + S.load.gdir[1] * v[1] + gz * v[2]);
+      if (!s.fend.empty())
+        pw += s.fend[3 * i] * v[0] + s.fend[3 * i + 1] * v[1] + s.fend[3 * i + 2] * v[2];
     }
   }
   report_points(rep, sim.rank, ke, c, v2, pw);
@@ -189,6 +317,7 @@ extern const StepHook sheet_hook = [] {
   h.name = "sheets";
   h.active = Active;
   h.phases3.p2g = ParticlesToGrid;
+  h.phases3.grid_update = Contact;
   h.phases3.after_g2p = GridToPoints;
   h.reduce = Reductions;
   return h;

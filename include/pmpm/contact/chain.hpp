@@ -67,11 +67,7 @@ inline constexpr const char *FaceTypeNames[] = {"bonded",   "paper", "contact",
                                                 "FaceType", "FACE_", nullptr};
 
 // Friction on one face of a chain: Coulomb mu (or tan delta) plus an adhesion (Pa).
-struct ChainFace {
-  FaceType type = FaceType::Contact;
-  double mu = 0.5;
-  double adhesion = 0;
-};
+using ChainFace = MembraneFace;
 
 // What a scene gives to make a chain.
 struct ChainSpec {
@@ -221,6 +217,8 @@ struct ContactStats {
   double contact_nodes = 0, slip_nodes = 0, separated_nodes = 0;
   double compression = 0, tension = 0; // normal impulse this step (N s/m)
   std::vector<double> friction;        // per chain: friction force on it along its tangent (N/m)
+  std::vector<double>
+      friction3; // per 3D sheet (sheet_contact.hpp): the friction force on it (N, 3)
 };
 // normal_pass: only the normal impulses (into the chains' NTOP / NBOT slots; velocities
 // untouched); then chain_friction_capacity; then the full pass with that friction capacity.

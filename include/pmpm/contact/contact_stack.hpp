@@ -48,6 +48,14 @@ constexpr int kStackMaxBodies = 8;
 
 enum class FaceType { Bonded = 0, Paper = 1, Contact = 2 };
 
+// One face of a membrane (a chain's or a sheet's) against the body beside it: its type, Coulomb
+// mu (or tan delta) and an adhesion (Pa).
+struct MembraneFace {
+  FaceType type = FaceType::Contact;
+  double mu = 0.5;
+  double adhesion = 0;
+};
+
 struct StackFace {
   FaceType type = FaceType::Contact;
   double mu = 0;       // Coulomb coefficient, >= 0

@@ -2,10 +2,9 @@
 // The sheet is a lattice of points joined by triangles (a structured mesh of the sheet); its
 // thickness t is a property, not a resolved dimension. This file holds the sheet's own mechanics,
 // plain functions over its arrays: the lattice, the membrane law and the internal point forces.
-// Coupling to the 3D grid (mass, momentum and forces to the nodes, contact on both faces) is the
-// the sheet scene's first step (src/step/sheets.cpp: mass, momentum and forces to the nodes of
-// the 3D grid, the points moved by the grid's velocity, a sheet alone); contact on both faces is
-// not here yet.
+// Coupling to the 3D grid: src/step/sheets.cpp (mass, momentum and forces to the nodes, the
+// points moved by the grid's velocity), and for a sheet between bodies the contact on both faces,
+// sheet_contact.hpp.
 //
 // Kinematics: each triangle maps its reference (laid) position to the current one with a constant
 // deformation gradient F (3 x 2, over the triangle's own orthonormal in-plane reference basis
@@ -31,6 +30,7 @@
 // the gradient of -sum A0 W over the points (tests/unit/test_sheet.cpp checks it by differences).
 // Each point carries a third of the mass and weight of every triangle it belongs to.
 #pragma once
+#include "pmpm/contact/contact_stack.hpp"
 #include <cmath>
 #include <string>
 #include <vector>
@@ -93,6 +93,20 @@ struct Sheet {
   // under the elastoplastic law the plastic strain (3) and the accumulated plastic strain
   std::vector<double> tens, bp, alpha;
 
+  // On the grid (sheet_contact.hpp): a sheet alone is the grid's only body (body 0, no slots);
+  // a sheet between bodies is a body of its own, body - 1 below it and body + 1 above, with its
+  // SheetDof slots at `slot` of each node, `up` (+1 or -1) turning its points' normals to point
+  // from the body below to the body above, and friction on each face.
+  int body = 0, slot = -1;
+  double thickness = 0; // t (m), for the answers beside closed forms (the law holds J)
+  double up = 1;
+  MembraneFace top, bottom;
+  // per point: a dead load (N, 3 per point; ramped with the load factor; empty: none), and from
+  // the grid when between bodies: the slip on each face (a vector in the sheet's plane, m, 3 per
+  // point) and the contact pressure on each face (Pa, negative: tension)
+  std::vector<double> fend, slip_top, slip_bot, p_top, p_bot;
+  bool in_contact() const { return slot >= 0; }
+
   // the in-plane wave speed sqrt(J / rho t) (the stable step's)
   double wave_speed() const { return std::sqrt(J / area_mass); }
 
@@ -103,8 +117,11 @@ struct Sheet {
   template <class F> int checkpoint_arrays(F &&f) {
     int err = f("x", x);
     if (!err) err = f("v", v);
+    if (!err && in_contact()) err = f("x0", x0); // a sheet between bodies may be laid (sheet_lay)
     if (!err && law == SheetLaw::Elastoplastic) err = f("plastic_strain", bp);
     if (!err && law == SheetLaw::Elastoplastic) err = f("alpha", alpha);
+    if (!err && in_contact()) err = f("slip_top", slip_top);
+    if (!err && in_contact()) err = f("slip_bottom", slip_bot);
     return err;
   }
 };
@@ -125,6 +142,10 @@ void sheet_rectangle(double x0, double dx, int nx, double z0, double dz, int nz,
 void sheet_reference(Sheet &s);
 // Strains, tensions and the internal point forces f from the current positions x.
 void sheet_update_forces(Sheet &s);
+// Lay the sheet where it is, unstrained (chain_lay's 3D form): the current positions become the
+// reference (sheet_reference), the plastic state and the slips start from zero, the forces are
+// recomputed (zero).
+void sheet_lay(Sheet &s);
 // The stored energy sum_t A0 W (J).
 double sheet_energy(const Sheet &s);
 // The points' unit normals from the current positions: the area-weighted mean of the normals

@@ -11,8 +11,17 @@
 // generates the whole plane (no grid: the plane's particles are O(N^(2/3)) of the run's N) and
 // keeps the particles of its 3D cells, so nothing is redistributed.
 //
+// A scene's membrane chains extrude as strips of 3D sheet (sheet.hpp) across the whole depth,
+// each a body of its own between the continuum below and above it (sheet_contact.hpp), its
+// faces, pins, law and end force the chain's: points at the chain's spacing along its line and a
+// cell apart across, from z = 0 to z = depth (the edge rows held in z where the z faces are
+// rollers), the end force spread over the last column by the points' widths; the plane's
+// particles take their bodies from the chains' lines before the extrusion (AssignBodies). A
+// chain must be straight and level for now (sheet_rectangle); the scene's results read the
+// sheet under -dim 3 (the pull-out does).
+//
 // What the 3D step does not run yet is refused before the run, by name (ExtrusionCheck): the
-// step's hooks that act inside the step's phases (chains, the colour interface, an imposed
+// step's hooks that act inside the step's phases (the colour interface, an imposed
 // eigenstrain; cpGIMP's support check runs after the step and reads the dimension), -solver
 // newton, -geometry axisymmetric, supports inside the box, -balance run, and scenes whose
 // results read the plane only

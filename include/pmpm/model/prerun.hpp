@@ -41,4 +41,9 @@ PetscErrorCode CheckMemoryExtruded(Simulation &sim, const MemoryCheck &m, PetscI
 // some ranks only, deep in DMSetUp). Before the grid of dimension D with ncell cells is created.
 PetscErrorCode CheckProcessGrid(Simulation &sim, int D, const PetscInt *ncell);
 
+// With chains, a particle's body is 2 k, k the number of chains below its centre (a chain's
+// height at x by linear interpolation of its points, held level beyond its ends): the plane's
+// particles in 2D (simulation.cpp) and before their extrusion under -dim 3 (extrude.cpp).
+void AssignBodies(const Simulation &sim, ParticleList &init);
+
 } // namespace pmpm

@@ -125,6 +125,9 @@ public:
   }
   // -dim 3 (extrude.hpp): the scene runs extruded along z (its results read any dimension).
   virtual bool extrudes() const { return false; }
+  // -dim 3: the scene's membrane chains become strips of 3D sheet (extrude.hpp) and its results
+  // read them as sheets.
+  virtual bool extrudes_chains() const { return false; }
   // -dim 3: whether an extruded particle centred at x (3 coordinates) is kept; a scene whose 3D
   // body is not a prism (the round column) drops the others. Default: every particle.
   virtual bool keeps_extruded(const double[3]) const { return true; }
