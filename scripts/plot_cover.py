@@ -71,7 +71,7 @@ def read_stages(path):
     out = {}
     for key in rows[0]:
         vals = [r[key] for r in rows]
-        if key == "kind":
+        if key in ("kind", "verdict"):
             out[key] = vals
         else:
             try:
@@ -309,6 +309,9 @@ def main(argv):
     if not frames:
         print(f"plot_cover.py: warning: no {outdir}/series/stage_*.h5: no deformed picture",
               file=sys.stderr)
+    elif os.path.isfile(os.path.join(outdir, "sheets.h5")):  # -dim 3: the sheet's own plots
+        print(f"plot_cover.py: a 3D cover: its sheet's plan map and sections are "
+              f"scripts/plot_sheet.py's (the particles' deformed picture here is 2D only)", file=sys.stderr)
     else:
         fr = read_frame(frames[-1])
         chains = read_chains(outdir)

@@ -3,7 +3,7 @@ r"""Plot the 3D geomembrane sheets of a pmpm run (-dim 3): the peak principal st
 the principal strains along sections through the sheet's centre.
 
 Usage (Debian python, not pyenv):
-    /usr/bin/python3 scripts/plot_sheet.py OUTDIR
+    /usr/bin/python3 scripts/plot_sheet.py OUTDIR [--centre X,Z]
 
 Reads OUTDIR/sheets.h5 (written by every run with a sheet; docs/outputs.md), group
 /sheets/<name>/ with the datasets position0 (n x 3, the laid points, m), position, displacement,
@@ -15,7 +15,8 @@ Writes, for each sheet, into OUTDIR:
     sheet_<name>_section.png   the major and minor principal strains (%) and the settlement (m)
                                of the points within half a lattice gap of the sections through
                                the centre along x and along z, against the distance from the
-                               centre
+                               centre (--centre X,Z; else a 3D cover's round void, its centre
+                               from OUTDIR/summary.json; else the free points' mean)
 pmpm's vertical is y: a sheet spans x and z and settles along -y. Exits non-zero with a message
 naming the file if the input is missing or malformed.
 """
@@ -65,16 +66,20 @@ def plan(out, name, s):
     plt.close(fig)
 
 
-def section(out, name, s):
+def section(out, name, s, centre=None):
     X0, u = s["position0"], s["displacement"]
     free = s["pinned"] == 0
     c = X0[free].mean(axis=0) if free.any() else X0.mean(axis=0)
+    if centre is not None:
+        c[0], c[2] = centre
     # the lattice gap: the median edge length of the laid triangles
     tri = s["triangles"]
     gap = np.median(np.linalg.norm(X0[tri[:, 1]] - X0[tri[:, 0]], axis=1))
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
     for axis, other, mk in ((0, 2, "o"), (2, 0, "s")):
-        sel = np.abs(X0[:, other] - c[other]) <= 0.5 * gap
+        # the row of points nearest the section line (a lattice may be finer along one axis)
+        near = np.min(np.abs(X0[:, other] - c[other]))
+        sel = np.abs(X0[:, other] - c[other]) <= near + 0.25 * gap
         r = X0[sel, axis] - c[axis]
         o = np.argsort(r)
         lab = "x" if axis == 0 else "z"
@@ -98,7 +103,22 @@ def section(out, name, s):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("outdir")
+    ap.add_argument("--centre", default=None,
+                    help="X,Z of the sections' centre (m; default: the free points' mean)")
     a = ap.parse_args()
+    centre = None
+    try:  # a 3D cover's round void (summary.json, results.void.centre)
+        import json
+        with open(os.path.join(a.outdir, "summary.json")) as f:
+            centre = json.load(f)["results"]["void"]["centre"]
+    except (OSError, KeyError, TypeError, ValueError):
+        pass
+    if a.centre is not None:
+        try:
+            centre = [float(v) for v in a.centre.split(",")]
+            assert len(centre) == 2
+        except (ValueError, AssertionError):
+            sys.exit(f"plot_sheet.py: --centre {a.centre}: give X,Z in metres (e.g. 0,0)")
     path = os.path.join(a.outdir, "sheets.h5")
     if not os.path.isfile(path):
         sys.exit(f"plot_sheet.py: {path} not found (a run with a 3D sheet writes it)")
@@ -109,7 +129,7 @@ def main():
         if miss:
             sys.exit(f"plot_sheet.py: {path}: sheet {name} lacks {', '.join(miss)}")
         plan(a.outdir, name, s)
-        section(a.outdir, name, s)
+        section(a.outdir, name, s, centre)
         print(f"wrote {a.outdir}/sheet_{name}_plan.png and _section.png")
 
 

@@ -26,6 +26,8 @@ if (($#)); then
   if compgen -G "$out/chain_*.csv" > /dev/null; then /usr/bin/python3 scripts/plot_chain.py "$out"; fi
   # a staged cover: the stage history and the deformed cover coloured by plastic strain
   if [ -f "$out/stages.csv" ]; then /usr/bin/python3 scripts/plot_cover.py "$out"; fi
+  # a 3D sheet (-dim 3): its major principal strain in plan and sections through its centre
+  if [ -f "$out/sheets.h5" ]; then /usr/bin/python3 scripts/plot_sheet.py "$out"; fi
   # the trapdoor: its ground reaction curve and deformed shape
   if [ -f "$out/trapdoor.csv" ]; then /usr/bin/python3 scripts/plot_trapdoor.py "$out"; fi
   exit "$rc"

@@ -25,6 +25,10 @@ usage: test_cover3d.py EXE NP OUTDIR
    most where it leaves its support) and the minor strain there smaller in size (measured -4 % of
    the major: the hoop hardly strains at the rim); summary.json has the void's Giroud comparison
    (round) and the sheet's files carry slip and pressure per face.
+4. Waste zones in 3D (1 rank; tests/cover_zones.opts over 1 m of depth): the stiff zone across
+   the whole box (its _x only), a round soft pocket (_centre 2,0.5, _radius 0.6, 2 to 3 m deep)
+   and a band bounded in z (_x 0,1, _z 0,0.5, 3.2 to 3.9 m deep): every waste particle's material
+   is the one its centre gives, computed here independently (exact: a classification).
 3. On NP > 1 ranks (4: a 2 x 1 x 2 process grid, the sheet crossing rank boundaries in x and z),
    the stage record and the sheet's points agree with one rank to 1e-8 relative (measured: the
    stage record's 8 digits equal, the sheet's displacements to 2e-12; the 2D cover allows 1e-4,
@@ -34,7 +38,7 @@ import math
 import sys
 
 import numpy as np
-from pmpmtest import Checks, run, stages, summary, waste_top
+from pmpmtest import Checks, particles, run, stages, summary, waste_top
 
 exe, np_, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 c = Checks(f"cover3d_np{np_}")
@@ -63,7 +67,8 @@ for mode, factor in (("vertical", 1.0), ("isotropic", (1 + nu) / (1 - nu) / 3)):
              abs(float(rows[k]["peak_strain"])), 1e-5)
 
 # 2. a round void: 3D against the body of revolution
-base = ["-options_file", "options/cover_sinkhole_3d.opts", "-cover_void_widths", "0.5,1,1.5,2"]
+base = ["-options_file", "options/cover_sinkhole_3d.opts", "-cover_void_widths", "0.5,1,1.5,2",
+        "-estimate_error", "0"]
 axi = ["-dim", "2", "-depth", "0", "-geometry", "axisymmetric"]
 d3 = f"{out}/round3d"
 run(exe, np_, base + grid, d3)
@@ -99,6 +104,45 @@ if np_ == 1:
                                                   "pressure_bottom")))
     c.check("round void 3D: stages.csv has the minor strain at the peak",
             "peak_strain_minor" in rows3[0])
+    c.check("round void 3D: summary.json gives the void's centre in plan",
+            r["void"].get("centre") == [0, 0])
+    # the plots a user gets (scripts/run.sh): the stage history (3D and axisymmetric) and the
+    # sheet's plan map and sections through the void's centre
+    import os
+    import subprocess
+    for script, d, png in (("plot_cover.py", d3, "stages.png"),
+                           ("plot_cover.py", f"{out}/axi_0.25", "cover_deformed.png"),
+                           ("plot_sheet.py", d3, "sheet_hdpe_section.png")):
+        p = subprocess.run(["/usr/bin/python3", f"scripts/{script}", d], capture_output=True,
+                           text=True)
+        c.check(f"scripts/{script} on {os.path.basename(d)} draws {png}",
+                p.returncode == 0 and os.path.isfile(f"{d}/{png}"), p.stderr.strip()[-200:])
+    # 4. zones in 3D
+    dz = f"{out}/zones3d"
+    run(exe, 1, ["-options_file", "tests/cover_zones.opts", "-dim", "3", "-depth", "1",
+                 "-cover_zones", "stiff,pocket,band", "-cover_zone_pocket_centre", "2,0.5",
+                 "-cover_zone_pocket_radius", "0.6", "-cover_zone_pocket_depth", "2,3",
+                 "-cover_zone_band_x", "0,1", "-cover_zone_band_z", "0,0.5",
+                 "-cover_zone_band_depth", "3.2,3.9", "-mat_pocket_model", "linear_elastic",
+                 "-mat_pocket_E", "1e6", "-mat_pocket_nu", "0.3", "-mat_pocket_gamma", "9e3",
+                 "-mat_band_model", "linear_elastic", "-mat_band_E", "3e6", "-mat_band_nu", "0.3",
+                 "-mat_band_gamma", "11e3", "-max_steps", "200"], dz, capped=True)
+    _, f = particles(dz, ("position0", "material"))
+    x0, mat = f["position0"], f["material"].ravel().astype(int)
+    waste = x0[:, 1] < 4.0  # the waste surface at y = 4 m (materials: waste 0, soil 1, then the
+    depth = 4.0 - x0[:, 1]  # zones' in order)
+    expect = np.zeros(len(x0), dtype=int)
+    expect[waste & (depth <= 1.5)] = 2
+    pocket = np.hypot(x0[:, 0] - 2, x0[:, 2] - 0.5) <= 0.6
+    expect[waste & pocket & (depth >= 2) & (depth <= 3)] = 3
+    band = (x0[:, 0] <= 1) & (x0[:, 2] <= 0.5)
+    expect[waste & band & (depth >= 3.2) & (depth <= 3.9)] = 4
+    c.check("zones in 3D: every waste particle's material from its centre",
+            np.array_equal(mat[waste], expect[waste]),
+            f"({np.sum(mat[waste] != expect[waste])} of {waste.sum()} differ; pocket "
+            f"{np.sum(mat == 3)}, band {np.sum(mat == 4)} particles)")
+    c.check("zones in 3D: the pocket and the band hold particles",
+            np.sum(mat == 3) > 0 and np.sum(mat == 4) > 0)
 else:  # 3. the same scene on one rank
     d1 = f"{out}/round3d_np1"
     run(exe, 1, base, d1)

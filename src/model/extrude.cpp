@@ -164,6 +164,12 @@ void Extrude(const Simulation &sim, const ParticleList &plane, ParticleListT<3> 
       p.pid = q.pid * nz + k;
       p.body = q.body;
       p.load = q.load; // its plane particle's entry of sim.model.loads3
+      const int mat = sim.scene->extruded_material(p.x, p.mat);
+      if (mat != p.mat) { // its own material at its 3D position (a scene's zone)
+        p.mat = mat;
+        p.density = sim.model.mats[mat].density;
+        p.gamma = sim.model.mats[mat].gamma;
+      }
       if (sim.scene->keeps_extruded(p.x)) out.push_back(p);
     }
   }

@@ -57,13 +57,23 @@ struct Membrane {
 // A zone of the waste with its own material (a soft pocket, a stiff inclusion): a rectangle in
 // x (the radius under -geometry axisymmetric, so a zone from 0 is a disc) and in depth below the
 // waste surface, the depth measured at each particle's column, so a zone follows the surface.
+// Under -dim 3 a zone is also bounded in z (-cover_zone_<name>_z; default the whole depth), or
+// round in plan (-cover_zone_<name>_centre X,Z and _radius R, in place of _x and _z): pmpm's
+// vertical is y, so the plan is (x, z).
 struct Zone {
   std::string name, material;
-  double x_lo = 0, x_hi = 0;      // (m)
-  double d_top = 0, d_bottom = 0; // depth below the waste surface (m), top < bottom
+  double x_lo = 0, x_hi = 0;          // (m)
+  double d_top = 0, d_bottom = 0;     // depth below the waste surface (m), top < bottom
+  double z_lo = -1e300, z_hi = 1e300; // -dim 3 (m)
+  double cx = 0, cz = 0, radius = 0;  // -dim 3: a round zone when radius > 0 (m)
   int mat = 0;
   bool contains(double x, double depth) const {
     return x >= x_lo && x <= x_hi && depth >= d_top && depth <= d_bottom;
+  }
+  bool contains3(const double X[3], double depth) const {
+    if (depth < d_top || depth > d_bottom) return false;
+    if (radius > 0) return std::hypot(X[0] - cx, X[2] - cz) <= radius;
+    return X[0] >= x_lo && X[0] <= x_hi && X[2] >= z_lo && X[2] <= z_hi;
   }
 };
 
@@ -381,9 +391,10 @@ class CoverScene final : public Scene {
       Z.name = nm;
       char mat[64];
       PetscCall(PetscStrncpy(mat, nm.c_str(), sizeof(mat)));
-      double x[2] = {0, 0}, d[2] = {0, 0};
-      PetscInt nx = 2, nd = 2;
-      PetscBool xset = PETSC_FALSE, dset = PETSC_FALSE;
+      double x[2] = {0, 0}, d[2] = {0, 0}, z[2] = {0, 0}, c[2] = {0, 0}, R = 0;
+      PetscInt nx = 2, nd = 2, nzr = 2, nc = 2;
+      PetscBool xset = PETSC_FALSE, dset = PETSC_FALSE, zset = PETSC_FALSE, cset = PETSC_FALSE,
+                rset = PETSC_FALSE;
       const std::string pre = "cover_zone_" + nm + "_";
       PetscOptionsBegin(sim.comm, pre.c_str(), ("Waste zone " + nm).c_str(), nullptr);
       PetscCall(PetscOptionsString("-material", "Material (-mat_<name>_*; default: the zone's)",
@@ -396,25 +407,47 @@ class CoverScene final : public Scene {
                                      "top,bottom: depths below the waste surface (m), 0 <= top "
                                      "< bottom",
                                      nullptr, d, &nd, &dset));
+      PetscCall(PmpmOptionsRealArray("-z", "-dim 3: z_lo,z_hi (m; default the whole depth)",
+                                     nullptr, z, &nzr, &zset));
+      PetscCall(PmpmOptionsRealArray("-centre",
+                                     "-dim 3: X,Z of a round zone's centre in plan (m; with "
+                                     "_radius, in place of _x and _z)",
+                                     nullptr, c, &nc, &cset));
+      PetscCall(PmpmOptionsReal("-radius", "-dim 3: a round zone's radius in plan (m), > 0",
+                                nullptr, R, &R, &rset));
       PetscOptionsEnd();
-      PmpmCheckInput(xset && nx == 2 && x[0] < x[1], sim.comm, PETSC_ERR_USER_INPUT,
-                     "-%sx is required: x_lo,x_hi with x_lo < x_hi", pre.c_str());
+      const bool round = cset || rset;
+      PmpmCheckInput(sim.set.dim == 3 || !(zset || round), sim.comm, PETSC_ERR_USER_INPUT,
+                     "-%sz, -%scentre and -%sradius are for -dim 3 (the run is 2D)", pre.c_str(),
+                     pre.c_str(), pre.c_str());
+      PmpmCheckInput(!round || (cset && nc == 2 && rset && R > 0 && !xset && !zset), sim.comm,
+                     PETSC_ERR_USER_INPUT,
+                     "-%scentre X,Z and -%sradius R > 0 go together, in place of -%sx and -%sz",
+                     pre.c_str(), pre.c_str(), pre.c_str(), pre.c_str());
+      PmpmCheckInput(round || (xset && nx == 2 && x[0] < x[1]), sim.comm, PETSC_ERR_USER_INPUT,
+                     "-%sx is required: x_lo,x_hi with x_lo < x_hi%s", pre.c_str(),
+                     sim.set.dim == 3 ? " (or a round zone: _centre X,Z and _radius R)" : "");
+      PmpmCheckInput(!zset || (nzr == 2 && z[0] < z[1]), sim.comm, PETSC_ERR_USER_INPUT,
+                     "-%sz needs z_lo,z_hi with z_lo < z_hi", pre.c_str());
       PmpmCheckInput(dset && nd == 2 && d[0] >= 0 && d[0] < d[1], sim.comm, PETSC_ERR_USER_INPUT,
                      "-%sdepth is required: top,bottom below the waste surface with 0 <= top < "
                      "bottom",
                      pre.c_str());
       Z.material = mat;
-      Z.x_lo = x[0];
-      Z.x_hi = x[1];
+      Z.x_lo = round ? c[0] - R : x[0];
+      Z.x_hi = round ? c[0] + R : x[1];
       Z.d_top = d[0];
       Z.d_bottom = d[1];
+      if (zset) Z.z_lo = z[0], Z.z_hi = z[1];
+      if (round) Z.cx = c[0], Z.cz = c[1], Z.radius = R, Z.z_lo = c[1] - R, Z.z_hi = c[1] + R;
+      // (their bounding boxes: two round zones may not touch even where the boxes do)
       for (const Zone &o : zones_)
         PmpmCheckInput(Z.x_hi <= o.x_lo || Z.x_lo >= o.x_hi || Z.d_bottom <= o.d_top ||
-                           Z.d_top >= o.d_bottom,
+                           Z.d_top >= o.d_bottom || Z.z_hi <= o.z_lo || Z.z_lo >= o.z_hi,
                        sim.comm, PETSC_ERR_USER_INPUT,
-                       "-cover_zones: zones %s and %s overlap (give them disjoint -%sx or "
-                       "-%sdepth ranges)",
-                       o.name.c_str(), nm.c_str(), pre.c_str(), pre.c_str());
+                       "-cover_zones: zones %s and %s overlap (give them disjoint -%sx, -%sdepth or "
+                       "(-dim 3) -%sz ranges)",
+                       o.name.c_str(), nm.c_str(), pre.c_str(), pre.c_str(), pre.c_str());
       zones_.push_back(Z);
     }
     PetscFunctionReturn(0);
@@ -605,10 +638,18 @@ class CoverScene final : public Scene {
                      "-cell_size",
                      void_w_.front(), 2 * dxp_);
     }
-    for (const Zone &z : zones_)
+    for (const Zone &z : zones_) {
+      if (z.radius > 0) {
+        PmpmCheckInput(z.cx >= 0 && z.cx <= W_ && z.cz >= 0 && z.cz <= sim.set.depth, sim.comm,
+                       PETSC_ERR_ARG_OUTOFRANGE,
+                       "-cover_zone_%s_centre %g,%g must lie in the box [0, %g] x [0, %g]",
+                       z.name.c_str(), z.cx, z.cz, W_, sim.set.depth);
+        continue;
+      }
       PmpmCheckInput(z.x_lo >= 0 && z.x_hi <= W_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                      "-cover_zone_%s_x %g,%g must lie in [0, -cover_width %g]", z.name.c_str(),
                      z.x_lo, z.x_hi, W_);
+    }
     PmpmCheckInput(allowable_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-cover_allowable_strain must be > 0");
     PmpmCheckInput(
@@ -736,7 +777,9 @@ public:
           const double dy = d / n;
           q.x[0] = x;
           q.x[1] = b[k] + (r + 0.5) * dy;
-          const int mat = k == 0 ? waste_material_at(x, b[1] - q.x[1]) : layers_[k - 1].mat;
+          // (-dim 3: the zones are decided per extruded particle, extruded_material)
+          const int mat =
+              k == 0 ? (dim3_ ? 0 : waste_material_at(x, b[1] - q.x[1])) : layers_[k - 1].mat;
           const PetscInt c[DIM] = {static_cast<PetscInt>(std::floor(q.x[0] / sim.set.h)),
                                    static_cast<PetscInt>(std::floor(q.x[1] / sim.set.h))};
           if (!sim.grid.owns_cell(c)) continue;
@@ -756,6 +799,13 @@ public:
 
   bool extrudes() const override { return true; }
   bool extrudes_chains() const override { return true; } // -dim 3: level 3D sheets
+  // -dim 3: a waste particle in a zone (bounded in z, or round in plan) takes its material
+  int extruded_material(const double X[3], int mat) const override {
+    if (mat != 0) return mat; // the waste's particles only
+    for (const Zone &z : zones_)
+      if (z.contains3(X, ys(X[0]) - X[1])) return z.mat;
+    return mat;
+  }
 
   PetscInt stages() const override {
     return (shrink_total_ > 0 ? shrink_stages_ : 0) + static_cast<PetscInt>(void_w_.size());
@@ -1379,6 +1429,8 @@ public:
       // perimeter, B / 4); Giroud's sheet over it is a spherical cap (giroud.hpp)
       const double Bt = round_ ? 0.5 * B : B;
       if (round_) g += ", \"round\": true";
+      if (dim3_) // the round void's centre in plan (x, z)
+        g += ", \"centre\": [" + json_num(void_x_) + ", " + json_num(void_z_) + "]";
       if (phi > 0) {
         const double tp = std::tan(phi * kDeg), sp = std::sin(phi * kDeg);
         const double Ka = (1 - sp) / (1 + sp);

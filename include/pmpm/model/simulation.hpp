@@ -131,6 +131,9 @@ public:
   // -dim 3: whether an extruded particle centred at x (3 coordinates) is kept; a scene whose 3D
   // body is not a prism (the round column) drops the others. Default: every particle.
   virtual bool keeps_extruded(const double[3]) const { return true; }
+  // -dim 3: the material of an extruded particle centred at x, given its plane particle's (a
+  // zone bounded in z, or round in plan). Default: the plane's.
+  virtual int extruded_material(const double[3], int mat) const { return mat; }
   // True when the later stages have no meaning any more (a footing that collapsed).
   virtual bool finished() const { return false; }
   // Checkpoint and restart (checkpoint.hpp): the scene's own state that changes during a run
