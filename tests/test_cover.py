@@ -28,36 +28,17 @@ usage: test_cover.py EXE NP OUTDIR
    kinetic-damping resets and the sheet's stick / slip switches are discrete events that amplify
    the ghost sums' round-off; 1e-4 is ten times below what -tol 1e-3 resolves).
 """
-import math
 import sys
 
 import numpy as np
-from pmpmtest import Checks, expected_verdict, run, stages, summary, waste_top
+from pmpmtest import Checks, expected_verdict, run, stages, summary, uniform_degradation
 
 exe, np_, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 c = Checks(f"cover_np{np_}")
 
 
 # 1. uniform degradation
-nu, ev = 0.3, 0.05  # per stage
-for mode, factor in (("vertical", 1.0), ("isotropic", (1 + nu) / (1 - nu) / 3)):
-    d = f"{out}/degradation_{mode}"
-    run(exe, np_, ["-options_file", "tests/cover_column.opts", "-cover_shrink_mode", mode], d)
-    rows = stages(d)
-    c.check(f"{mode}: three stages recorded, all converged",
-            len(rows) == 3 and all(r["converged"] == "1" for r in rows),
-            f"({[r['steps'] for r in rows]} steps)")
-    y = [waste_top(d, k) for k in range(3)]
-    for k in (1, 2):
-        exact = y[k - 1] * (1 - math.exp(-factor * ev))
-        sim = y[k - 1] - y[k]
-        c.le(f"{mode}, stage {k}: waste settlement against the closed form (relative)",
-             abs(sim / exact - 1), 0.005)
-        ms = float(rows[k]["membrane_settlement"]) - float(rows[k - 1]["membrane_settlement"])
-        c.le(f"{mode}, stage {k}: membrane settlement against the waste's (relative)",
-             abs(ms / sim - 1), 0.02)
-        c.le(f"{mode}, stage {k}: membrane strain stays zero", abs(float(rows[k]["peak_strain"])),
-             1e-5)
+uniform_degradation(c, exe, np_, out)
 
 # 2. a void
 d1 = f"{out}/void_np{np_}"

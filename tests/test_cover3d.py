@@ -38,33 +38,14 @@ import math
 import sys
 
 import numpy as np
-from pmpmtest import Checks, particles, run, stages, summary, waste_top
+from pmpmtest import Checks, particles, run, stages, summary, uniform_degradation
 
 exe, np_, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 c = Checks(f"cover3d_np{np_}")
 grid = {4: ["-da_processors_x", "2", "-da_processors_y", "1", "-da_processors_z", "2"]}.get(np_, [])
 
 # 1. uniform degradation, extruded
-nu, ev = 0.3, 0.05
-for mode, factor in (("vertical", 1.0), ("isotropic", (1 + nu) / (1 - nu) / 3)):
-    d = f"{out}/degradation_{mode}"
-    run(exe, np_, ["-options_file", "tests/cover_column.opts", "-cover_shrink_mode", mode, "-dim",
-                   "3", "-depth", "0.5"], d)
-    rows = stages(d)
-    c.check(f"3D {mode}: three stages recorded, all converged",
-            len(rows) == 3 and all(r["converged"] == "1" for r in rows),
-            f"({[r['steps'] for r in rows]} steps)")
-    y = [waste_top(d, k) for k in range(3)]
-    for k in (1, 2):
-        exact = y[k - 1] * (1 - math.exp(-factor * ev))
-        sim = y[k - 1] - y[k]
-        c.le(f"3D {mode}, stage {k}: waste settlement against the closed form (relative)",
-             abs(sim / exact - 1), 0.005)
-        ms = float(rows[k]["membrane_settlement"]) - float(rows[k - 1]["membrane_settlement"])
-        c.le(f"3D {mode}, stage {k}: membrane settlement against the waste's (relative)",
-             abs(ms / sim - 1), 0.02)
-        c.le(f"3D {mode}, stage {k}: membrane strain stays zero",
-             abs(float(rows[k]["peak_strain"])), 1e-5)
+uniform_degradation(c, exe, np_, out, ["-dim", "3", "-depth", "0.5"], "3D ")
 
 # 2. a round void: 3D against the body of revolution
 base = ["-options_file", "options/cover_sinkhole_3d.opts", "-cover_void_widths", "0.5,1,1.5,2",

@@ -666,41 +666,9 @@ double chain_elastic_energy(const Chain &c) {
 }
 
 namespace {
-// The face between two present bodies lo < hi at a node: the face of the chain between them,
-// or, where a chain lies between but does not reach the node, the weaker of its two faces.
+// The face between two present bodies lo < hi at a node (face_between_membranes, every chain).
 StackFace face_between(const std::vector<Chain> &chains, int lo, int hi) {
-  StackFace f;
-  bool first = true;
-  for (const Chain &c : chains) {
-    if (c.body < lo || c.body > hi) continue;
-    const ChainFace *cand[2] = {nullptr, nullptr};
-    if (c.body == lo)
-      cand[0] = &c.top;
-    else if (c.body == hi)
-      cand[0] = &c.bottom;
-    else {
-      cand[0] = &c.top;
-      cand[1] = &c.bottom;
-    }
-    for (const ChainFace *cf : cand) {
-      if (!cf) continue;
-      if (first) {
-        f.type = cf->type;
-        f.mu = cf->mu;
-        f.adhesion = cf->adhesion;
-        first = false;
-      } else {
-        f.mu = std::min(f.mu, cf->mu);
-        f.adhesion = std::min(f.adhesion, cf->adhesion);
-        if (cf->type == FaceType::Contact || f.type == FaceType::Contact)
-          f.type = FaceType::Contact;
-        else if (cf->type == FaceType::Paper || f.type == FaceType::Paper)
-          f.type = FaceType::Paper;
-      }
-    }
-  }
-  if (first) f.type = FaceType::Bonded; // two continuum bodies with no chain between: one body
-  return f;
+  return face_between_membranes(chains, lo, hi, [](const Chain &) { return true; });
 }
 } // namespace
 

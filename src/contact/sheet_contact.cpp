@@ -11,40 +11,10 @@ using G3 = GridDofT<3>;
 constexpr int kMaxBodies = 8;
 constexpr double kNoNormal = 1e-300; // as chain.cpp's: no sheet point reaches the node
 
-// The face between two present bodies lo < hi at a node: the face of the sheet between them, or,
-// where a sheet lies between but does not reach the node, the weaker of its two faces; bonded
-// where no sheet lies between (chain.cpp, face_between).
+// The face between two present bodies lo < hi at a node (face_between_membranes, the sheets
+// between bodies).
 StackFace face_between(const std::vector<Sheet> &sheets, int lo, int hi) {
-  StackFace f;
-  bool first = true;
-  for (const Sheet &s : sheets) {
-    if (!s.in_contact() || s.body < lo || s.body > hi) continue;
-    const MembraneFace *cand[2] = {nullptr, nullptr};
-    if (s.body == lo)
-      cand[0] = &s.top;
-    else if (s.body == hi)
-      cand[0] = &s.bottom;
-    else {
-      cand[0] = &s.top;
-      cand[1] = &s.bottom;
-    }
-    for (const MembraneFace *cf : cand) {
-      if (!cf) continue;
-      if (first) {
-        f = {cf->type, cf->mu, cf->adhesion};
-        first = false;
-        continue;
-      }
-      f.mu = std::min(f.mu, cf->mu);
-      f.adhesion = std::min(f.adhesion, cf->adhesion);
-      if (cf->type == FaceType::Contact || f.type == FaceType::Contact)
-        f.type = FaceType::Contact;
-      else if (cf->type == FaceType::Paper || f.type == FaceType::Paper)
-        f.type = FaceType::Paper;
-    }
-  }
-  if (first) f.type = FaceType::Bonded;
-  return f;
+  return face_between_membranes(sheets, lo, hi, [](const Sheet &s) { return s.in_contact(); });
 }
 
 // The faces between neighbouring bodies at the node: bonded where no sheet gives a normal;

@@ -442,12 +442,13 @@ class CoverScene final : public Scene {
       if (round) Z.cx = c[0], Z.cz = c[1], Z.radius = R, Z.z_lo = c[1] - R, Z.z_hi = c[1] + R;
       // (their bounding boxes: two round zones may not touch even where the boxes do)
       for (const Zone &o : zones_)
-        PmpmCheckInput(Z.x_hi <= o.x_lo || Z.x_lo >= o.x_hi || Z.d_bottom <= o.d_top ||
-                           Z.d_top >= o.d_bottom || Z.z_hi <= o.z_lo || Z.z_lo >= o.z_hi,
-                       sim.comm, PETSC_ERR_USER_INPUT,
-                       "-cover_zones: zones %s and %s overlap (give them disjoint -%sx, -%sdepth or "
-                       "(-dim 3) -%sz ranges)",
-                       o.name.c_str(), nm.c_str(), pre.c_str(), pre.c_str(), pre.c_str());
+        PmpmCheckInput(
+            Z.x_hi <= o.x_lo || Z.x_lo >= o.x_hi || Z.d_bottom <= o.d_top ||
+                Z.d_top >= o.d_bottom || Z.z_hi <= o.z_lo || Z.z_lo >= o.z_hi,
+            sim.comm, PETSC_ERR_USER_INPUT,
+            "-cover_zones: zones %s and %s overlap (give them disjoint -%sx, -%sdepth or "
+            "(-dim 3) -%sz ranges)",
+            o.name.c_str(), nm.c_str(), pre.c_str(), pre.c_str(), pre.c_str());
       zones_.push_back(Z);
     }
     PetscFunctionReturn(0);
@@ -1232,15 +1233,10 @@ public:
     if (!sim.chains.empty()) {
       const Chain &c = sim.chains.back();
       const SheetPeak pk = sheet_peak(c, gauge_);
-      // the design answer is the largest peak over the stages: a sheet strained past its
-      // allowable at one stage has failed there, even if a later stage unloads it (a round void
-      // widening under a plug of cover does: docs/cover.md, "A round void")
+      // the design answer is the largest peak over the stages (OverStages)
       double peak_hist = pk.strain, tension_hist = pk.tension;
       int peak_stage = rows_.back().stage;
-      for (const StageRow &q : rows_) {
-        if (q.peak_strain > peak_hist) peak_hist = q.peak_strain, peak_stage = q.stage;
-        tension_hist = std::fmax(tension_hist, q.peak_tension);
-      }
+      OverStages(peak_hist, tension_hist, peak_stage);
       int it = 0, ib = 0;
       double slack_len = 0, slack_lo = 1e300, slack_hi = -1e300;
       for (int j = 0; j + 1 < c.n; ++j)
@@ -1277,29 +1273,46 @@ public:
                c.name.c_str(), 100 * pk.strain, pk.strain_x, gauge_, pk.tension / 1e3,
                pk.tension_x);
       where_ = line;
-      if (peak_stage != rows_.back().stage) {
-        snprintf(line, sizeof(line), "; its largest over the stages %.3f %% at stage %d",
-                 100 * peak_hist, peak_stage);
-        where_ += line;
-      }
-      design_ = DesignRecord{};
-      design_.has_check = true;
-      design_.allowable = allowable_;
-      design_.answers = {
-          {"peak_strain", "peak membrane strain", peak_hist, 100, "%", true},
-          {"peak_tension", "peak membrane tension", tension_hist, 1e-3, "kN/m", false},
-          {"surface_settlement", "surface settlement", rows_.back().surface_settlement, 1, "m",
-           false},
-          {"membrane_settlement", "membrane settlement", rows_.back().membrane_settlement, 1, "m",
-           false},
-          {"differential_settlement", "differential settlement of the membrane",
-           rows_.back().differential, 1, "m", false}};
+      SetDesign(peak_hist, tension_hist, peak_stage, "");
       double p = 0, sag = 0;
       if (!void_w_.empty() && void_eff_ > 0) VoidPressureSag(c, void_eff_, &p, &sag);
       PetscCall(ComparisonJson(sim, c.law.J, c.thickness, c.top.mu, p, sag, json));
     }
     if (!sim.sheets.empty()) PetscCall(SheetResults(sim, json)); // -dim 3
     PetscFunctionReturn(0);
+  }
+
+  // The design answer is the largest peak over the stages: a sheet strained past its allowable at
+  // one stage has failed there, even if a later stage unloads it (a round void widening under a
+  // plug of cover does: docs/cover.md, "A round void"). peak, tension: the last stage's, raised
+  // to the stages' largest; stage: where the peak strain is.
+  void OverStages(double &peak, double &tension, int &stage) const {
+    for (const StageRow &q : rows_) {
+      if (q.peak_strain > peak) peak = q.peak_strain, stage = q.stage;
+      tension = std::fmax(tension, q.peak_tension);
+    }
+  }
+  // The design record (checked: the peak strain) and, after where_, the stage of the largest
+  // peak when it is not the last; `kind` qualifies the strain and tension (3D: major principal).
+  void SetDesign(double peak, double tension, int stage, const std::string &kind) {
+    if (stage != rows_.back().stage) {
+      char line[128];
+      snprintf(line, sizeof(line), "; its largest over the stages %.3f %% at stage %d", 100 * peak,
+               stage);
+      where_ += line;
+    }
+    design_ = DesignRecord{};
+    design_.has_check = true;
+    design_.allowable = allowable_;
+    design_.answers = {
+        {"peak_strain", "peak membrane strain" + kind, peak, 100, "%", true},
+        {"peak_tension", "peak membrane tension" + kind, tension, 1e-3, "kN/m", false},
+        {"surface_settlement", "surface settlement", rows_.back().surface_settlement, 1, "m",
+         false},
+        {"membrane_settlement", "membrane settlement", rows_.back().membrane_settlement, 1, "m",
+         false},
+        {"differential_settlement", "differential settlement of the membrane",
+         rows_.back().differential, 1, "m", false}};
   }
 
   // -dim 3: the top-most sheet's answers (results() above gives a chain's): the peak principal
@@ -1313,10 +1326,7 @@ public:
     const PeakPrincipal pk = sheet_peak_principal(s);
     double peak_hist = pk.strain1, tension_hist = pk.tension1;
     int peak_stage = rows_.back().stage;
-    for (const StageRow &q : rows_) {
-      if (q.peak_strain > peak_hist) peak_hist = q.peak_strain, peak_stage = q.stage;
-      tension_hist = std::fmax(tension_hist, q.peak_tension);
-    }
+    OverStages(peak_hist, tension_hist, peak_stage);
     int it = 0, ib = 0;
     for (int i = 0; i < s.n; ++i) {
       if (SlipOf(s.slip_top, i) > SlipOf(s.slip_top, it)) it = i;
@@ -1347,24 +1357,7 @@ public:
              s.name.c_str(), 100 * pk.strain1, 100 * pk.strain2, s.x0[3 * pk.point],
              s.x0[3 * pk.point + 2], pk.tension1 / 1e3);
     where_ = line;
-    if (peak_stage != rows_.back().stage) {
-      snprintf(line, sizeof(line), "; its largest over the stages %.3f %% at stage %d",
-               100 * peak_hist, peak_stage);
-      where_ += line;
-    }
-    design_ = DesignRecord{};
-    design_.has_check = true;
-    design_.allowable = allowable_;
-    design_.answers = {
-        {"peak_strain", "peak membrane strain (major principal)", peak_hist, 100, "%", true},
-        {"peak_tension", "peak membrane tension (major principal)", tension_hist, 1e-3, "kN/m",
-         false},
-        {"surface_settlement", "surface settlement", rows_.back().surface_settlement, 1, "m",
-         false},
-        {"membrane_settlement", "membrane settlement", rows_.back().membrane_settlement, 1, "m",
-         false},
-        {"differential_settlement", "differential settlement of the membrane",
-         rows_.back().differential, 1, "m", false}};
+    SetDesign(peak_hist, tension_hist, peak_stage, " (major principal)");
     double p = 0, sag = 0;
     if (!void_w_.empty() && void_eff_ > 0) VoidPressureSag3(s, void_eff_, &p, &sag);
     PetscCall(ComparisonJson(sim, s.J, s.thickness, s.top.mu, p, sag, json));

@@ -97,24 +97,9 @@ PetscErrorCode Reductions(StepState &S) {
   StepReport &rep = S.rep;
   ContactStats &cs = rep.contact;
   PetscFunctionBeginUser;
-  std::vector<double> sm = {cs.contact_nodes, cs.slip_nodes, cs.separated_nodes, cs.compression,
-                            cs.tension};
   cs.friction.resize(sim.chains.size(), 0.0);
-  sm.insert(sm.end(), cs.friction.begin(), cs.friction.end());
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm.data(), static_cast<int>(sm.size()), MPI_DOUBLE,
-                             MPI_SUM, sim.comm));
-  cs.contact_nodes = sm[0];
-  cs.slip_nodes = sm[1];
-  cs.separated_nodes = sm[2];
-  cs.compression = sm[3];
-  cs.tension = sm[4];
-  for (size_t k = 0; k < sim.chains.size(); ++k) {
-    cs.friction[k] = sm[5 + k];
-    sim.chains[k].friction_force = sm[5 + k];
-  }
-  sim.contact_stats = cs;
-  sim.contact_impulse[0] += cs.compression;
-  sim.contact_impulse[1] += cs.tension;
+  PetscCall(ReduceContact(sim, cs, cs.friction));
+  for (size_t k = 0; k < sim.chains.size(); ++k) sim.chains[k].friction_force = cs.friction[k];
   double ke = 0, v2 = 0, c = 0, pw = 0;
   for (const Chain &ch : sim.chains) {
     c = std::fmax(c, ch.wave_speed());
@@ -135,6 +120,25 @@ PetscErrorCode Reductions(StepState &S) {
   PetscFunctionReturn(0);
 }
 } // namespace
+
+PetscErrorCode ReduceContact(Simulation &sim, ContactStats &cs, std::vector<double> &per) {
+  PetscFunctionBeginUser;
+  std::vector<double> sm = {cs.contact_nodes, cs.slip_nodes, cs.separated_nodes, cs.compression,
+                            cs.tension};
+  sm.insert(sm.end(), per.begin(), per.end());
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm.data(), static_cast<int>(sm.size()), MPI_DOUBLE,
+                             MPI_SUM, sim.comm));
+  cs.contact_nodes = sm[0];
+  cs.slip_nodes = sm[1];
+  cs.separated_nodes = sm[2];
+  cs.compression = sm[3];
+  cs.tension = sm[4];
+  per.assign(sm.begin() + 5, sm.end());
+  sim.contact_stats = cs;
+  sim.contact_impulse[0] += cs.compression;
+  sim.contact_impulse[1] += cs.tension;
+  PetscFunctionReturn(0);
+}
 
 extern const StepHook chain_hook = [] {
   StepHook h{};

@@ -270,22 +270,8 @@ PetscErrorCode Reductions(StepState &S) {
   StepReport &rep = S.rep;
   PetscFunctionBeginUser;
   if (InContact(sim)) {
-    ContactStats &cs = rep.contact;
-    cs.friction3.resize(3 * sim.sheets.size(), 0.0);
-    std::vector<double> sm = {cs.contact_nodes, cs.slip_nodes, cs.separated_nodes, cs.compression,
-                              cs.tension};
-    sm.insert(sm.end(), cs.friction3.begin(), cs.friction3.end());
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sm.data(), static_cast<int>(sm.size()), MPI_DOUBLE,
-                               MPI_SUM, sim.comm));
-    cs.contact_nodes = sm[0];
-    cs.slip_nodes = sm[1];
-    cs.separated_nodes = sm[2];
-    cs.compression = sm[3];
-    cs.tension = sm[4];
-    cs.friction3.assign(sm.begin() + 5, sm.end());
-    sim.contact_stats = cs;
-    sim.contact_impulse[0] += cs.compression;
-    sim.contact_impulse[1] += cs.tension;
+    rep.contact.friction3.resize(3 * sim.sheets.size(), 0.0);
+    PetscCall(ReduceContact(sim, rep.contact, rep.contact.friction3));
   }
   double ke = 0, v2 = 0, c = 0, pw = 0;
   const double gz = sim.set.gdir_z;

@@ -63,6 +63,47 @@ struct StackFace {
                        // length * dt, >= 0, added to the friction capacity where in contact
 };
 
+// The face between two present bodies lo < hi at a node, among membranes (chains or 3D sheets:
+// each with `body`, `top` and `bottom` MembraneFaces) for which counts(membrane) holds: the face of
+// the membrane between them, or, where a membrane lies between but does not reach the node, the
+// weaker of its two faces (the smaller mu and adhesion, the looser type); bonded where none lies
+// between (two continuum bodies with no membrane between them are one body).
+template <class Membranes, class Counts>
+StackFace face_between_membranes(const Membranes &ms, int lo, int hi, Counts counts) {
+  StackFace f;
+  bool first = true;
+  for (const auto &c : ms) {
+    if (!counts(c) || c.body < lo || c.body > hi) continue;
+    const MembraneFace *cand[2] = {nullptr, nullptr};
+    if (c.body == lo)
+      cand[0] = &c.top;
+    else if (c.body == hi)
+      cand[0] = &c.bottom;
+    else {
+      cand[0] = &c.top;
+      cand[1] = &c.bottom;
+    }
+    for (const MembraneFace *cf : cand) {
+      if (!cf) continue;
+      if (first) {
+        f.type = cf->type;
+        f.mu = cf->mu;
+        f.adhesion = cf->adhesion;
+        first = false;
+      } else {
+        f.mu = cf->mu < f.mu ? cf->mu : f.mu;
+        f.adhesion = cf->adhesion < f.adhesion ? cf->adhesion : f.adhesion;
+        if (cf->type == FaceType::Contact || f.type == FaceType::Contact)
+          f.type = FaceType::Contact;
+        else if (cf->type == FaceType::Paper || f.type == FaceType::Paper)
+          f.type = FaceType::Paper;
+      }
+    }
+  }
+  if (first) f.type = FaceType::Bonded;
+  return f;
+}
+
 struct StackFaceResult {
   double normal = 0;     // normal impulse across the face, > 0 compression (pushes the lower body
                          // along -n, the upper along +n)

@@ -85,6 +85,11 @@ inline void report_points(StepReport &rep, int rank, double ke, double c, double
   if (rank == 0) rep.g2p.weight_power += pw;
 }
 
+// The stacked-body contact's counts and impulses of this step summed over ranks, with `per`
+// (the chains' friction forces, or the 3D sheets' friction vectors) summed alongside; the run's
+// record of them (sim.contact_stats, sim.contact_impulse) updated (src/step/chains.cpp).
+PetscErrorCode ReduceContact(Simulation &sim, ContactStats &cs, std::vector<double> &per);
+
 // The 3D sheets' forces and weight on the grid (src/step/sheets.cpp), for the static residual.
 void p2g_sheets(const Simulation &sim, const LoadT<3> &load, const GridViewT<3> &G);
 
