@@ -25,11 +25,14 @@ usage: test_cover3d.py EXE NP OUTDIR
    most where it leaves its support) and the minor strain there smaller in size (measured -4 % of
    the major: the hoop hardly strains at the rim); summary.json has the void's Giroud comparison
    (round) and the sheet's files carry slip and pressure per face.
-4. Waste zones in 3D (1 rank; tests/cover_zones.opts over 1 m of depth): the stiff zone across
+3. Waste zones in 3D (1 rank; tests/cover_zones.opts over 1 m of depth): the stiff zone across
    the whole box (its _x only), a round soft pocket (_centre 2,0.5, _radius 0.6, 2 to 3 m deep)
    and a band bounded in z (_x 0,1, _z 0,0.5, 3.2 to 3.9 m deep): every waste particle's material
    is the one its centre gives, computed here independently (exact: a classification).
-3. On NP > 1 ranks (4: a 2 x 1 x 2 process grid, the sheet crossing rank boundaries in x and z),
+4. Restart (1 rank): the short void cover (0.5, 1, 1.5 m) restarted from stage 0's end (after
+   the sheet is laid) and from inside stage 2 gives the uninterrupted run's sheet and stage record
+   bit for bit (the wall seconds aside).
+5. On NP > 1 ranks (4: a 2 x 1 x 2 process grid, the sheet crossing rank boundaries in x and z),
    the stage record and the sheet's points agree with one rank to 1e-8 relative (measured: the
    stage record's 8 digits equal, the sheet's displacements to 2e-12; the 2D cover allows 1e-4,
    where kinetic-damping resets and stick / slip switches amplified the round-off).
@@ -98,7 +101,7 @@ if np_ == 1:
                            text=True)
         c.check(f"scripts/{script} on {os.path.basename(d)} draws {png}",
                 p.returncode == 0 and os.path.isfile(f"{d}/{png}"), p.stderr.strip()[-200:])
-    # 4. zones in 3D
+    # 3. zones in 3D
     dz = f"{out}/zones3d"
     run(exe, 1, ["-options_file", "tests/cover_zones.opts", "-dim", "3", "-depth", "1",
                  "-cover_zones", "stiff,pocket,band", "-cover_zone_pocket_centre", "2,0.5",
@@ -124,7 +127,24 @@ if np_ == 1:
             f"{np.sum(mat == 3)}, band {np.sum(mat == 4)} particles)")
     c.check("zones in 3D: the pocket and the band hold particles",
             np.sum(mat == 3) > 0 and np.sum(mat == 4) > 0)
-else:  # 3. the same scene on one rank
+    # 4. checkpoint and restart of a 3D cover (its sheet laid after stage 0: the reference it
+    # strains from is checkpointed): from stage 0's end and from inside stage 2, bit for bit
+    short = ["-options_file", "options/cover_sinkhole_3d.opts", "-estimate_error", "0",
+             "-cover_void_widths", "0.5,1,1.5"]
+    run(exe, 1, short, f"{out}/restart_base")
+    run(exe, 1, short + ["-checkpoint_every", "400", "-checkpoint_at_stage_end"],
+        f"{out}/restart_ck")
+    ends = [sum(int(r["steps"]) for r in stages(f"{out}/restart_ck")[:k + 1]) for k in range(4)]
+    for step, what in ((ends[0], "stage 0's end"), (800, "inside stage 2")):
+        d = f"{out}/restart_{step}"
+        run(exe, 1, short + ["-restart", f"{out}/restart_ck/checkpoint_{step}.h5"], d)
+        same = all(open(f"{out}/restart_base/{f}").read() == open(f"{d}/{f}").read()
+                   for f in ("sheet_hdpe.csv",))
+        rows_a = [list(r.values())[:18] for r in stages(f"{out}/restart_base")]
+        rows_b = [list(r.values())[:18] for r in stages(d)]
+        c.check(f"3D cover restarted from {what} (step {step}): the sheet and the stage record "
+                f"bit for bit", same and rows_a == rows_b)
+else:  # 5. the same scene on one rank
     d1 = f"{out}/round3d_np1"
     run(exe, 1, base, d1)
     rows1 = stages(d1)
