@@ -29,6 +29,9 @@ usage: test_cover3d.py EXE NP OUTDIR
    the whole box (its _x only), a round soft pocket (_centre 2,0.5, _radius 0.6, 2 to 3 m deep)
    and a band bounded in z (_x 0,1, _z 0,0.5, 3.2 to 3.9 m deep): every waste particle's material
    is the one its centre gives, computed here independently (exact: a classification).
+   A degrading zone round in plan (-cover_shrink_centre, -cover_shrink_radius): one that covers
+   the box gives the uniform run's stage record exactly; one of 1 m radius about the corner
+   settles the sheet 77 mm at its centre and 9 mm 3.5 m away (bound: a fifth).
 4. Restart (1 rank): the short void cover (0.5, 1, 1.5 m) restarted from stage 0's end (after
    the sheet is laid) and from inside stage 2 gives the uninterrupted run's sheet and stage record
    bit for bit (the wall seconds aside).
@@ -127,6 +130,23 @@ if np_ == 1:
             f"{np.sum(mat == 3)}, band {np.sum(mat == 4)} particles)")
     c.check("zones in 3D: the pocket and the band hold particles",
             np.sum(mat == 3) > 0 and np.sum(mat == 4) > 0)
+    # 3b. a degrading zone round in plan: one that covers the box is the uniform run exactly;
+    # one of 1 m radius about the corner settles the sheet there and hardly at the far corner
+    dr = f"{out}/round_zone_all"
+    col = ["-options_file", "tests/cover_column.opts", "-dim", "3", "-depth", "0.5",
+           "-cover_shrink_centre", "0,0"]
+    run(exe, 1, col + ["-cover_shrink_radius", "10"], dr)
+    c.check("round degrading zone over the whole box: the uniform run's stage record exactly",
+            [list(r.values())[:17] for r in stages(dr)] ==
+            [list(r.values())[:17] for r in stages(f"{out}/degradation_vertical")])
+    dr = f"{out}/round_zone_1m"
+    run(exe, 1, col + ["-cover_shrink_radius", "1", "-cover_shrink_stages", "1",
+                       "-cover_shrink_total", "0.05"], dr)
+    p = np.genfromtxt(f"{dr}/sheet_hdpe.csv", delimiter=",", names=True)
+    r = np.hypot(p["x0"], p["z0"])
+    near, far = -p["uy"][r < 0.3].mean(), -p["uy"][r > 3.5].mean()
+    c.le(f"round degrading zone of 1 m: the sheet's settlement 3.5 m away over that at its centre "
+         f"({far:.4g}, {near:.4g} m)", far / near, 0.2)
     # 4. checkpoint and restart of a 3D cover (its sheet laid after stage 0: the reference it
     # strains from is checkpointed): from stage 0's end and from inside stage 2, bit for bit
     short = ["-options_file", "options/cover_sinkhole_3d.opts", "-estimate_error", "0",

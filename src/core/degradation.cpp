@@ -16,6 +16,18 @@ double shrinkage_grade(const Shrinkage &s, const double X[DIM]) {
   return gx * (s.grade_bottom + r * (s.grade_top - s.grade_bottom));
 }
 
+double shrinkage_grade3(const Shrinkage &s, const double X[3]) {
+  if (!(s.radius > 0)) return shrinkage_grade(s, X);
+  const double y = X[1];
+  if (y < s.y_lo || y > s.y_hi) return 0;
+  const double r = std::hypot(X[0] - s.cx, X[2] - s.cz);
+  double gr = 1;
+  if (r > s.radius) gr = s.taper > 0 ? std::max(0.0, 1 - (r - s.radius) / s.taper) : 0.0;
+  const double span = s.y_hi - s.y_lo;
+  const double t = span > 0 && std::isfinite(span) ? (y - s.y_lo) / span : 0.5;
+  return gr * (s.grade_bottom + t * (s.grade_top - s.grade_bottom));
+}
+
 template <int D>
 double shrinkage_increment(const ParticleView &P, const Shrinkage &s, double amount,
                            std::vector<double> &eigen) {
@@ -24,7 +36,8 @@ double shrinkage_increment(const ParticleView &P, const Shrinkage &s, double amo
   double power = 0;
   for (PetscInt p = 0; p < P.n; ++p) {
     if (!s.degrades[P.mat[p]]) continue;
-    const double ev = amount * shrinkage_grade(s, P.x0 + p * D); // x, y of the initial point
+    const double ev = amount * (D == 3 ? shrinkage_grade3(s, P.x0 + p * D)
+                                       : shrinkage_grade(s, P.x0 + p * D)); // the initial point
     if (ev == 0) continue;
     double *e = &eigen[3 * p];
     if (s.mode == ShrinkMode::Vertical) {

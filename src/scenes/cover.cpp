@@ -250,7 +250,9 @@ class CoverScene final : public Scene {
               zones_set = PETSC_FALSE;
     std::vector<double> surf = std::vector<double>(2 * kMaxList),
                         vw = std::vector<double>(kMaxList);
-    double zx[2] = {0, 0}, gr[2] = {1, 1};
+    double zx[2] = {0, 0}, gr[2] = {1, 1}, sc[2] = {0, 0};
+    PetscInt nsc = 2;
+    PetscBool sc_set = PETSC_FALSE;
     char *lnames[kMaxList], *mnames[kMaxList], *znames[kMaxList], wbuf[64];
   };
   PetscErrorCode ReadCoverBlock(Simulation &sim, RawCoverOptions &raw) {
@@ -304,6 +306,14 @@ class CoverScene final : public Scene {
                               (PetscEnum *)&sim.model.shrink.mode, nullptr));
     PetscCall(PmpmOptionsRealArray("-shrink_x", "Degrading zone x_lo,x_hi (m; default all)",
                                    nullptr, raw.zx, &raw.nz, &raw.zx_set));
+    PetscCall(PmpmOptionsRealArray("-shrink_centre",
+                                   "-dim 3: X,Z of a degrading zone round in plan (m; with "
+                                   "-cover_shrink_radius, in place of -cover_shrink_x)",
+                                   nullptr, raw.sc, &raw.nsc, &raw.sc_set));
+    PetscCall(PmpmOptionsReal("-shrink_radius",
+                              "-dim 3: the round degrading zone's radius (m), > 0; the "
+                              "shrinkage tapers over -cover_shrink_taper beyond it",
+                              nullptr, sim.model.shrink.radius, &sim.model.shrink.radius, nullptr));
     PetscCall(PmpmOptionsReal("-shrink_taper",
                               "Shrinkage falls linearly to 0 over this distance outside the "
                               "zone (m)",
@@ -372,6 +382,16 @@ class CoverScene final : public Scene {
       sim.model.shrink.x_lo = raw.zx[0];
       sim.model.shrink.x_hi = raw.zx[1];
     }
+    const bool round_zone = raw.sc_set || sim.model.shrink.radius != 0;
+    PmpmCheckInput(!round_zone || sim.set.dim == 3, sim.comm, PETSC_ERR_USER_INPUT,
+                   "-cover_shrink_centre and -cover_shrink_radius are for -dim 3 (the run is 2D; "
+                   "-cover_shrink_x bounds the zone in x)");
+    PmpmCheckInput(!round_zone ||
+                       (raw.sc_set && raw.nsc == 2 && sim.model.shrink.radius > 0 && !raw.zx_set),
+                   sim.comm, PETSC_ERR_USER_INPUT,
+                   "-cover_shrink_centre X,Z and -cover_shrink_radius R > 0 go together, in place "
+                   "of -cover_shrink_x");
+    if (round_zone) sim.model.shrink.cx = raw.sc[0], sim.model.shrink.cz = raw.sc[1];
     PmpmCheckInput(!raw.gr_set || raw.ng == 2, sim.comm, PETSC_ERR_USER_INPUT,
                    "-cover_shrink_grade needs bottom,top");
     sim.model.shrink.grade_bottom = raw.gr[0];

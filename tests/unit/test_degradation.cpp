@@ -3,6 +3,7 @@
 // against values written out by hand; a 3D particle gives its 2D parent's increment and power.
 #include "check.hpp"
 #include "pmpm/core/degradation.hpp"
+#include <cmath>
 #include <vector>
 
 using namespace pmpm;
@@ -92,9 +93,37 @@ void test_3d_against_2d() {
   }
 }
 
+// 3D, a zone round in plan (radius 2 about (x, z) = (1, 3), taper 1 m beyond it, graded in y as
+// Zone's): full inside the circle at any azimuth, half in the middle of the taper, none beyond
+// it; the increment of a particle is amount times that grade.
+void test_round_zone() {
+  Shrinkage s = Zone(ShrinkMode::Vertical);
+  s.x_lo = 100, s.x_hi = 101; // an x range that would exclude every particle: the circle wins
+  s.cx = 1, s.cz = 3, s.radius = 2;
+  const double c = std::cos(0.3), d = std::sin(0.3);
+  // (x, y, z) and the grade: inside (r = 1.9), in the taper (r = 2.5), beyond (r = 3.2), on the
+  // circle above the zone's top (y = 11)
+  const double X[4][3] = {{1 + 1.9 * c, 0, 3 + 1.9 * d},
+                          {1 - 2.5 * d, 5, 3 + 2.5 * c},
+                          {1 + 3.2, 2, 3},
+                          {1, 11, 3 + 2}};
+  const double want[4] = {1.0, 0.5 * 0.75, 0.0, 0.0};
+  Cloud<3> cl(4);
+  for (int p = 0; p < 4; ++p) {
+    for (int k = 0; k < 3; ++k) cl.x0[3 * p + k] = X[p][k];
+    CHECK_CLOSE(shrinkage_grade3(s, X[p]), want[p], 1e-14);
+  }
+  std::vector<double> e;
+  shrinkage_increment<3>(cl.P, s, 0.01, e);
+  for (int p = 0; p < 4; ++p) CHECK_CLOSE(e[3 * p + 1], -0.01 * want[p], 1e-16);
+  s.radius = 0; // no circle: the x range's prism (nothing degrades at x < 100)
+  for (int p = 0; p < 4; ++p) CHECK(shrinkage_grade3(s, X[p]) == 0.0);
+}
+
 } // namespace
 
 int main() {
+  test_round_zone();
   test_mode<2>(ShrinkMode::Vertical);
   test_mode<2>(ShrinkMode::Isotropic);
   test_mode<3>(ShrinkMode::Vertical);

@@ -33,16 +33,22 @@ struct Shrinkage {
   double y_lo = -1e300, y_hi = 1e300;            // zone in y (m)
   double grade_bottom = 1, grade_top = 1;        // factors at y_lo and y_hi
   std::vector<char> degrades;                    // per material: 1 if it shrinks
+  // 3D: a zone round in plan in place of the x range when radius > 0: full within radius of
+  // (cx, cz), falling linearly to 0 over taper beyond it
+  double cx = 0, cz = 0, radius = 0;
 };
 
 // The zone's grade (0..1 times the grading factors) at an initial position X.
 double shrinkage_grade(const Shrinkage &s, const double X[DIM]);
+// The same at a 3D initial position: the x range's (a prism along z), or a round zone's.
+double shrinkage_grade3(const Shrinkage &s, const double X[3]);
 
 // The eigenstrain increment of this step for every particle (3 per particle: xx, yy, zz) for a
 // volumetric shrinkage `amount` of the zone at full grade. Returns this rank's power of the
 // eigenstrain on the current stresses, sum_p V_p sigma_p : (-de*_p) (J/m; J in 3D), for the
 // energy budget of the relaxation. D = 2, 3: the particles' layout (positions of D, NStress<D>
-// stresses); in 3D the zone is a prism along z (graded by the initial x and y).
+// stresses); in 3D the zone is a prism along z (graded by the initial x and y) or round in plan
+// (shrinkage_grade3).
 template <int D>
 double shrinkage_increment(const ParticleView &P, const Shrinkage &s, double amount,
                            std::vector<double> &eigen);
