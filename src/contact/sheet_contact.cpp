@@ -212,4 +212,19 @@ void sheet_friction_capacity(const GridViewT<3> &L, const GridViewT<3> &G,
   }
 }
 
+Sheet SheetMaterialOf(const Chain &probe) {
+  Sheet s;
+  const int kind = probe.law.kind;
+  s.law = kind == MembraneLawId<TensionOnlyMembrane>     ? SheetLaw::TensionField
+          : kind == MembraneLawId<ElastoplasticMembrane> ? SheetLaw::Elastoplastic
+                                                         : SheetLaw::Linear;
+  s.J = probe.law.J;
+  s.nu = probe.nu;
+  s.area_mass = probe.line_mass;
+  s.area_weight = probe.line_weight;
+  s.yield_N = probe.law.yield_T; // sigma_y t
+  s.hardening = probe.law.hardening;
+  return s;
+}
+
 } // namespace pmpm

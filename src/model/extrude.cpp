@@ -3,7 +3,6 @@
 #include "pmpm/contact/interface.hpp"
 #include "pmpm/contact/sheet_contact.hpp"
 #include "pmpm/model/balance.hpp"
-#include "pmpm/scenes/scene_util.hpp"
 #include "pmpm/util/options.hpp"
 #include <cmath>
 

@@ -21,6 +21,7 @@
 #include "pmpm/contact/sheet.hpp"
 #include "pmpm/util/options.hpp"
 #include "pmpm/io/output.hpp"
+#include "pmpm/contact/sheet_contact.hpp"
 #include "pmpm/scenes/scene_util.hpp"
 #include <cmath>
 

@@ -70,21 +70,6 @@ PetscErrorCode CompareVertical(Simulation &sim, const std::function<double(doubl
   PetscFunctionReturn(0);
 }
 
-Sheet SheetMaterialOf(const Chain &probe) {
-  Sheet s;
-  const int kind = probe.law.kind;
-  s.law = kind == MembraneLawId<TensionOnlyMembrane>     ? SheetLaw::TensionField
-          : kind == MembraneLawId<ElastoplasticMembrane> ? SheetLaw::Elastoplastic
-                                                         : SheetLaw::Linear;
-  s.J = probe.law.J;
-  s.nu = probe.nu;
-  s.area_mass = probe.line_mass;
-  s.area_weight = probe.line_weight;
-  s.yield_N = probe.law.yield_T; // sigma_y t
-  s.hardening = probe.law.hardening;
-  return s;
-}
-
 double UniaxialStrainJ(const MaterialEntry &m, double sig) {
   const ElasticConstants &c = m.el;
   double J = std::exp(sig / c.M());

@@ -7,6 +7,7 @@
 // the centre, the centre strain and the rim's radial strain (sheet_disc_strains), the peak
 // principal strains (sheet_peak_principal), and writes the sheet as a surface (sheet_output.cpp).
 #include "pmpm/io/output.hpp"
+#include "pmpm/contact/sheet_contact.hpp"
 #include "pmpm/scenes/scene_util.hpp"
 #include "pmpm/util/options.hpp"
 #include <cmath>

@@ -38,6 +38,11 @@ struct SheetContactParams {
 void contact_sheets(const GridViewT<3> &G, const std::vector<Sheet> &sheets,
                     const SheetContactParams &prm, bool normal_pass, ContactStats &st);
 
+// A 3D sheet made of the material a chain reads from the same -mat_<name>_* options (chain.hpp:
+// ChainCreate): its law (linear, tension_only as the tension field, elastoplastic), J, nu, mass
+// and weight per area, yield force and hardening. The caller lays its lattice.
+Sheet SheetMaterialOf(const Chain &probe);
+
 // Point i's uGIMP weights on the 3D grid: a square patch of the sheet one cell wide in its
 // tangent plane, thin across it, kept inside the box (src/step/sheets.cpp).
 void sheet_point_weights(const Sheet &s, int i, const GridViewT<3> &G, Weights<UGIMPShape, 3> &W);

@@ -39,9 +39,4 @@ PetscErrorCode GatherToRoot(MPI_Comm comm, const std::vector<double> &mine,
 // Sum of values over all ranks.
 PetscErrorCode SumAll(MPI_Comm comm, double *v, int n);
 
-// A 3D sheet made of the material a chain reads from the same -mat_<name>_* options (chain.hpp:
-// ChainCreate): its law (linear, tension_only as the tension field, elastoplastic), J, nu, mass
-// and weight per area, yield force and hardening. The caller lays its lattice.
-Sheet SheetMaterialOf(const Chain &probe);
-
 } // namespace pmpm
