@@ -739,15 +739,8 @@ void store_normal_impulses(double *node, const std::vector<Chain> &chains, int k
 // faces' friction impulses (along tau = -t, t = (-n_y, n_x) being contact_stack's tangent).
 void record_contact(double *node, const std::vector<Chain> &chains, int k, const int *ids,
                     const StackFaceResult *res, double dt, ContactStats &st) {
-  st.contact_nodes += 1;
-  bool slipped = false, separated = false;
-  for (int q = 0; q + 1 < k; ++q) {
-    slipped = slipped || res[q].slip;
-    separated = separated || !res[q].contact;
-    if (res[q].normal > 0)
-      st.compression += res[q].normal;
-    else
-      st.tension -= res[q].normal;
+  count_stack_faces(k, res, st);
+  for (int q = 0; q + 1 < k; ++q)
     for (size_t ci = 0; ci < chains.size(); ++ci) {
       const Chain &c = chains[ci];
       if (c.body == ids[q]) { // the chain is the lower body: its top face
@@ -758,9 +751,6 @@ void record_contact(double *node, const std::vector<Chain> &chains, int k, const
         st.friction[ci] += res[q].tangential / dt;
       }
     }
-  }
-  if (slipped) st.slip_nodes += 1;
-  if (separated) st.separated_nodes += 1;
 }
 
 // The bodies' new velocities and forces back on the node (held dofs zero).

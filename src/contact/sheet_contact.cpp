@@ -134,15 +134,8 @@ void contact_sheets(const GridViewT<3> &G, const std::vector<Sheet> &sheets,
             }
           continue;
         }
-        st.contact_nodes += 1;
-        bool slipped = false, separated = false;
-        for (int q = 0; q + 1 < k; ++q) {
-          slipped = slipped || res[q].slip;
-          separated = separated || !res[q].contact;
-          if (res[q].normal > 0)
-            st.compression += res[q].normal;
-          else
-            st.tension -= res[q].normal;
+        count_stack_faces(k, res, st);
+        for (int q = 0; q + 1 < k; ++q)
           for (size_t si = 0; si < sheets.size(); ++si) {
             const Sheet &s = sheets[si];
             // the impulse is on the lower body: the sheet's top face when it is the lower one
@@ -150,9 +143,6 @@ void contact_sheets(const GridViewT<3> &G, const std::vector<Sheet> &sheets,
             for (int d = 0; d < 3 && sgn != 0.0; ++d)
               st.friction3[3 * si + d] += sgn * res[q].tangential[d] / dt;
           }
-        }
-        if (slipped) st.slip_nodes += 1;
-        if (separated) st.separated_nodes += 1;
         for (int q = 0; q < k; ++q) { // the new velocities and forces (held dofs zero)
           double *nbk = node + ids[q] * ND;
           for (int d = 0; d < 3; ++d) {

@@ -220,6 +220,23 @@ struct ContactStats {
   std::vector<double>
       friction3; // per 3D sheet (sheet_contact.hpp): the friction force on it (N, 3)
 };
+// One resolved node's counts: a contact node, and a slip / separated node when any of its k - 1
+// faces slipped / let go; each face's normal impulse into compression or tension. Result is
+// contact_stack's (2D) or contact_stack3's (3D) face result.
+template <class Result> void count_stack_faces(int k, const Result *res, ContactStats &st) {
+  st.contact_nodes += 1;
+  bool slipped = false, separated = false;
+  for (int q = 0; q + 1 < k; ++q) {
+    slipped = slipped || res[q].slip;
+    separated = separated || !res[q].contact;
+    if (res[q].normal > 0)
+      st.compression += res[q].normal;
+    else
+      st.tension -= res[q].normal;
+  }
+  if (slipped) st.slip_nodes += 1;
+  if (separated) st.separated_nodes += 1;
+}
 // normal_pass: only the normal impulses (into the chains' NTOP / NBOT slots; velocities
 // untouched); then chain_friction_capacity; then the full pass with that friction capacity.
 void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const ContactParams &prm,
