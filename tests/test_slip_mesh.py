@@ -15,7 +15,9 @@ Slip is path dependent and has no closed form here; what must hold:
   halving), upper face 25.0 / 22.8 / 21.3 mm (9 %, 7 %: the smaller slip converges more slowly,
   order about 0.5). Bounds at h = 0.5 against 0.25 m: the largest slip per face within 2 % (lower)
   and 12 % (upper); the profiles' relative L2 difference within 4 % (lower, measured 1.8 %) and
-  15 % (upper, measured 10.2 %).
+  15 % (upper, measured 10.2 %). Since a body counts in the slip rate only above its tail share
+  of a node (2026-12-06; docs/cover.md, "Slopes and grades in 3D"): lower face 85.5 / 86.8 mm
+  (1.5 %), L2 2.0 %; upper 25.0 / 22.8 mm (9.6 %), L2 10.4 %.
 A bonded face's slip is exactly zero (test_chain_slip.py); the pull-out's slip meets its closed
 form (test_pullout.py).
 """

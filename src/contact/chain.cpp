@@ -490,7 +490,8 @@ bool chain_point_weights(const Chain &c, int i, const GridView &G, const Grid &g
   return !pinned(c, i) && owned_by(grid, G, &c.x[i * DIM]);
 }
 
-void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm) {
+void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm,
+               double tail_share) {
   Weights<UGIMPShape> W;
   constexpr int NS = UGIMPShape::NS, ND = GridDof::NDOF;
   const double dt = prm.dt, pic = prm.pic;
@@ -529,15 +530,20 @@ void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &p
           ag[d] += w * nc[GridDof::F + d];
         }
         // slip: the sheet's velocity relative to each neighbouring body at the same nodes, the
-        // nodes of the point's stencil where that body is (a mass-weighted mean of the body's
-        // velocity against the sheet's own mean compared node rows a cell apart: a sheet bonded
-        // on both faces slipped 5.7, 3.0, 1.4 mm at h = 0.5, 0.25, 0.125 m, the shear over half
-        // a cell, on an elastic degrading cover)
-        if (na[GridDof::M] > 0) {
+        // nodes of the point's stencil where that body holds more than a tail share (a
+        // mass-weighted mean of the body's velocity against the sheet's own mean compared node
+        // rows a cell apart: a sheet bonded on both faces slipped 5.7, 3.0, 1.4 mm at h = 0.5,
+        // 0.25, 0.125 m, the shear over half a cell, on an elastic degrading cover; a tail's
+        // velocity is the node's common one, or a round-off mass's meaningless one: FaceSlips-
+        // AndPressures, step/sheets.cpp)
+        double msum = 0;
+        for (int b = 0; b < G.nbody; ++b) msum += node[b * ND + GridDof::M];
+        const double tail = tail_share * msum;
+        if (na[GridDof::M] > tail) {
           for (int d = 0; d < DIM; ++d) va[d] += w * (nc[GridDof::P + d] - na[GridDof::P + d]);
           ma += w;
         }
-        if (nb[GridDof::M] > 0) {
+        if (nb[GridDof::M] > tail) {
           for (int d = 0; d < DIM; ++d) vb[d] += w * (nc[GridDof::P + d] - nb[GridDof::P + d]);
           mb += w;
         }

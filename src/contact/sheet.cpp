@@ -122,17 +122,11 @@ void sheet_disc(double R, double ds, const double c[3], Sheet &s) {
   sheet_reference(s);
 }
 
-void sheet_rectangle(double x0, double dx, int nx, double z0, double dz, int nz, double y,
-                     Sheet &s) {
-  s.n = nx * nz;
-  s.x0.assign(3 * static_cast<size_t>(s.n), 0.0);
-  for (int i = 0; i < nx; ++i)
-    for (int j = 0; j < nz; ++j) {
-      double *X = &s.x0[3 * static_cast<size_t>(i * nz + j)];
-      X[0] = x0 + i * dx;
-      X[1] = y;
-      X[2] = z0 + j * dz;
-    }
+namespace {
+// The lattice's triangles and the rest of a new sheet: point (i, j) numbered i nz + j, each
+// square split along its diagonal, the diagonals alternating square by square; x = x0, v = 0,
+// the reference.
+void lattice_triangles(int nx, int nz, Sheet &s) {
   s.pinned.assign(s.n, 0);
   s.tri.clear();
   for (int i = 0; i + 1 < nx; ++i)
@@ -148,6 +142,34 @@ void sheet_rectangle(double x0, double dx, int nx, double z0, double dz, int nz,
   s.v.assign(s.x0.size(), 0.0);
   s.f.assign(s.x0.size(), 0.0);
   sheet_reference(s);
+}
+} // namespace
+
+void sheet_rectangle(double x0, double dx, int nx, double z0, double dz, int nz, double y,
+                     Sheet &s) {
+  s.n = nx * nz;
+  s.x0.assign(3 * static_cast<size_t>(s.n), 0.0);
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < nz; ++j) {
+      double *X = &s.x0[3 * static_cast<size_t>(i * nz + j)];
+      X[0] = x0 + i * dx;
+      X[1] = y;
+      X[2] = z0 + j * dz;
+    }
+  lattice_triangles(nx, nz, s);
+}
+
+void sheet_strip(const double *xy, int nx, double z0, double dz, int nz, Sheet &s) {
+  s.n = nx * nz;
+  s.x0.assign(3 * static_cast<size_t>(s.n), 0.0);
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < nz; ++j) {
+      double *X = &s.x0[3 * static_cast<size_t>(i * nz + j)];
+      X[0] = xy[2 * i];
+      X[1] = xy[2 * i + 1];
+      X[2] = z0 + j * dz;
+    }
+  lattice_triangles(nx, nz, s);
 }
 
 void sheet_lay(Sheet &s) {

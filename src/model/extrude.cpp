@@ -61,12 +61,15 @@ PetscErrorCode SheetOfChain(Simulation &sim, const Chain &c, int k, int nbody, S
   PetscFunctionBeginUser;
   const double h = sim.set.h;
   const PetscInt nz = static_cast<PetscInt>(std::llround(sim.set.depth / h));
-  bool level = true;
-  for (int i = 1; i < c.n; ++i) level = level && c.x0[i * DIM + 1] == c.x0[1];
-  PmpmCheckInput(level && c.n >= 2, sim.comm, PETSC_ERR_SUP,
-                 "-dim 3: chain %s is extruded as a strip of 3D sheet, which needs a straight, "
-                 "level line for now (its points run from y = %g to %g m)",
-                 c.name.c_str(), c.x0[1], c.x0[(c.n - 1) * DIM + 1]);
+  bool level = c.n >= 2, rising = c.n >= 2; // x increasing: a line over the plan's x
+  for (int i = 1; i < c.n; ++i) {
+    level = level && c.x0[i * DIM + 1] == c.x0[1];
+    rising = rising && c.x0[i * DIM] > c.x0[(i - 1) * DIM];
+  }
+  PmpmCheckInput(rising, sim.comm, PETSC_ERR_SUP,
+                 "-dim 3: chain %s is extruded as a strip of 3D sheet, which needs its points' x "
+                 "to increase along it (a line over the plan, level, sloped or bent)",
+                 c.name.c_str());
   // uniaxial J = E t is the sheet's E t / (1 - nu^2) only when nu = 0
   PmpmCheckInput(c.stiffness == StiffnessKind::PlaneStrain || c.nu == 0, sim.comm, PETSC_ERR_SUP,
                  "-mat_%s_axial_stiffness uniaxial with -mat_%s_nu %g: a 3D sheet is biaxial "
@@ -77,7 +80,10 @@ PetscErrorCode SheetOfChain(Simulation &sim, const Chain &c, int k, int nbody, S
   st.thickness = c.thickness;
   const double x0 = c.x0[0], len = c.x0[(c.n - 1) * DIM] - x0;
   const int nx = c.n, nzp = static_cast<int>(nz) + 1;
-  sheet_rectangle(x0, len / (nx - 1), nx, 0.0, h, nzp, c.x0[1], st);
+  if (level) // a level line: the rectangle (the lattice's x from its ends)
+    sheet_rectangle(x0, len / (nx - 1), nx, 0.0, h, nzp, c.x0[1], st);
+  else // sloped or bent (a cover over a side slope and its crest): the line swept along z
+    sheet_strip(c.x0.data(), nx, 0.0, h, nzp, st); // (x, y) pairs: DIM == 2
   st.held.assign(st.n, 0);
   st.fend.assign(3 * static_cast<size_t>(st.n), 0.0);
   // a point on a box face with a roller or fixed condition is held normal to it (the z faces'
@@ -99,6 +105,17 @@ PetscErrorCode SheetOfChain(Simulation &sim, const Chain &c, int k, int nbody, S
         for (int d = 0; d < DIM; ++d) st.fend[3 * p + d] = c.end_force[d] * width;
       }
     }
+  bool lifted = false; // the scene's height at each point's z (Scene::extruded_height)
+  for (int p = 0; p < st.n; ++p) {
+    double *X = &st.x0[3 * static_cast<size_t>(p)], stretch;
+    const double y = sim.scene->extruded_height(X[0], X[1], X[2], &stretch);
+    lifted = lifted || y != X[1];
+    X[1] = y;
+  }
+  if (lifted) {
+    st.x = st.x0;
+    sheet_reference(st);
+  }
   sheet_normals(st);
   st.up = st.nrm[1] >= 0 ? 1.0 : -1.0; // the body above is the one at larger y
   st.body = c.body;
@@ -142,11 +159,6 @@ void Extrude(const Simulation &sim, const ParticleList &plane, ParticleListT<3> 
   const double h = sim.set.h, dz = h / sim.set.ppc;
   const PetscInt nz = g.ncell[2] * sim.set.ppc; // particles along z
   for (const ParticleInit &q : plane) {
-    PetscInt c[3];
-    for (int d = 0; d < DIM; ++d)
-      c[d] = static_cast<PetscInt>(std::floor((q.x[d] - g.origin[d]) / h));
-    c[2] = g.cell_lo[2];
-    if (!g.owns_cell(c)) continue;
     for (PetscInt k = g.cell_lo[2] * sim.set.ppc; k < g.cell_hi[2] * sim.set.ppc; ++k) {
       ParticleInitT<3> p{};
       for (int d = 0; d < DIM; ++d) {
@@ -156,6 +168,16 @@ void Extrude(const Simulation &sim, const ParticleList &plane, ParticleListT<3> 
       p.x[2] = g.origin[2] + (k + 0.5) * dz;
       p.lp[2] = 0.5 * dz;
       p.vol = q.vol * dz;
+      double stretch = 1; // the scene's height at this z (Scene::extruded_height)
+      p.x[1] = sim.scene->extruded_height(q.x[0], q.x[1], p.x[2], &stretch);
+      if (stretch != 1) {
+        p.vol *= stretch;
+        p.lp[1] *= stretch;
+      }
+      PetscInt c[3];
+      for (int d = 0; d < 3; ++d)
+        c[d] = static_cast<PetscInt>(std::floor((p.x[d] - g.origin[d]) / h));
+      if (!g.owns_cell(c)) continue;
       p.density = q.density;
       p.gamma = q.gamma;
       p.colour = q.colour;

@@ -160,7 +160,8 @@ void TakeNames(char **names, PetscInt n, std::vector<std::string> &out) {
 
 class CoverScene final : public Scene {
   // geometry (m)
-  double W_ = 40, Hw_ = 10, grade_ = 0;              // width, waste height, deck grade (%)
+  double W_ = 40, Hw_ = 10, grade_ = 0; // width, waste height, deck grade (%)
+  double grade_z_ = 0; // -dim 3: the waste surface's grade along z (per cent, rising with z)
   double slope_deg_ = 0, slope_len_ = 0, toe_x_ = 0; // side slope
   std::vector<double> surf_;                         // waste surface polyline x,y,...
   std::vector<Layer> layers_;                        // bottom-up
@@ -218,10 +219,22 @@ class CoverScene final : public Scene {
     for (int j = 0; j < k; ++j) y += layers_[j].thickness(x, W_);
     return y;
   }
+  // -dim 3: the waste surface's height at (x, z): the plane's ys(x) risen at -cover_deck_grade_z
+  double ys3(const double X[3]) const { return ys(X[0]) + grade_z_ / 100.0 * X[2]; }
+  // -dim 3 (Scene::extruded_height): the plane's waste stretched to the surface at this z
+  // (dy'/dy = ys3 / ys), what lies on it lifted with it
+  double extruded_height(double x, double y, double z, double *stretch) const override {
+    *stretch = 1;
+    if (grade_z_ == 0) return y;
+    const double lift = grade_z_ / 100.0 * z, s = ys(x);
+    if (y > s) return y + lift;
+    *stretch = 1 + lift / s;
+    return y + lift * (y / s); // y = s: the same height as the layers' (y + lift)
+  }
   // -dim 3: a round void of diameter `width` about (void_x_, void_z_) in plan
   bool in_void3(const double X[3], double width) const {
     if (width <= 0) return false;
-    const double top = ys(X[0]) - void_depth_;
+    const double top = ys3(X) - void_depth_;
     return std::hypot(X[0] - void_x_, X[2] - void_z_) <= 0.5 * width && X[1] <= top &&
            X[1] >= top - void_h_;
   }
@@ -265,6 +278,10 @@ class CoverScene final : public Scene {
                               nullptr, Hw_, &Hw_, nullptr));
     PetscCall(PmpmOptionsReal("-deck_grade", "Top deck grade (per cent, rising to the right)",
                               nullptr, grade_, &grade_, nullptr));
+    PetscCall(PmpmOptionsReal("-deck_grade_z",
+                              "-dim 3: the waste surface's grade along z (per cent, rising with "
+                              "z; its layers and membranes follow it)",
+                              nullptr, grade_z_, &grade_z_, nullptr));
     PetscCall(PmpmOptionsReal("-slope_angle", "Side slope angle beta (degrees; 0: no side slope)",
                               nullptr, slope_deg_, &slope_deg_, nullptr));
     PetscCall(PmpmOptionsReal("-slope_length",
@@ -616,15 +633,17 @@ class CoverScene final : public Scene {
                      PETSC_ERR_ARG_OUTOFRANGE,
                      "-cover_void_widths must be positive and non-decreasing (entry %d: %g)",
                      (int)k, void_w_[k]);
-    dim3_ = sim.set.dim == 3;
-    if (dim3_) { // the sheets are level strips of 3D sheet for now (extrude.cpp)
-      bool level = true;
-      for (size_t k = 1; k < surf_.size() / 2; ++k) level = level && surf_[2 * k + 1] == surf_[1];
-      for (const Layer &l : layers_) level = level && l.t_start == l.t_end;
-      PmpmCheckInput(level, sim.comm, PETSC_ERR_SUP,
-                     "-dim 3: the cover's waste surface and layers must be level for now (no "
-                     "-cover_deck_grade, -cover_slope_*, sloping -cover_surface or tapered "
-                     "layers): its membranes are level 3D sheets");
+    dim3_ = sim.set.dim == 3; // its membranes strips of 3D sheet along z (extrude.cpp)
+    if (grade_z_ != 0) {      // the waste stretched along y by ys3 / ys: at least half of it left
+      PmpmCheckInput(dim3_, sim.comm, PETSC_ERR_ARG_INCOMP,
+                     "-cover_deck_grade_z %g is for -dim 3 (a grade across the plane)", grade_z_);
+      double lowest = 1e300;
+      for (size_t k = 0; k < surf_.size() / 2; ++k) lowest = std::fmin(lowest, surf_[2 * k + 1]);
+      PmpmCheckInput(std::fabs(grade_z_) <= 50 && grade_z_ / 100.0 * sim.set.depth > -0.5 * lowest,
+                     sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                     "-cover_deck_grade_z must be in [-50, 50] per cent and leave at least half "
+                     "of the waste at z = %g (-depth; the lowest waste surface is %g m; got %g)",
+                     sim.set.depth, lowest, grade_z_);
     }
     if (!void_w_.empty() && dim3_) { // a round void about (x, z), widths its diameters
       const double w = void_w_.back(), D = sim.set.depth;
@@ -698,6 +717,7 @@ public:
       bands(surf_[2 * k], b);
       top = std::fmax(top, b.back());
     }
+    if (grade_z_ > 0) top += grade_z_ / 100.0 * sim.set.depth; // -dim 3: risen along z
     sim.model.origin[0] = sim.model.origin[1] = 0;
     sim.model.ncell[0] = nW;
     sim.model.ncell[1] = static_cast<PetscInt>(std::ceil(top / sim.set.h - 1e-9)) + 2;
@@ -740,6 +760,7 @@ public:
     if (shrink_total_ > 0) {
       double ytop = 0;
       for (size_t k = 0; k < surf_.size() / 2; ++k) ytop = std::fmax(ytop, surf_[2 * k + 1]);
+      if (grade_z_ > 0) ytop += grade_z_ / 100.0 * sim.set.depth; // -dim 3: risen along z
       sim.model.shrink.y_hi = ytop; // grading is linear from the base to the highest waste surface
       for (size_t m = 0; m < names.size(); ++m)
         PmpmCheckInput(!waste_mat_of_[m] || sim.model.mats[m].model->rate_form(), sim.comm,
@@ -819,12 +840,12 @@ public:
   }
 
   bool extrudes() const override { return true; }
-  bool extrudes_chains() const override { return true; } // -dim 3: level 3D sheets
+  bool extrudes_chains() const override { return true; } // -dim 3: strips of 3D sheet
   // -dim 3: a waste particle in a zone (bounded in z, or round in plan) takes its material
   int extruded_material(const double X[3], int mat) const override {
     if (mat != 0) return mat; // the waste's particles only
     for (const Zone &z : zones_)
-      if (z.contains3(X, ys(X[0]) - X[1])) return z.mat;
+      if (z.contains3(X, ys3(X) - X[1])) return z.mat;
     return mat;
   }
 

@@ -59,7 +59,7 @@ PetscErrorCode GridToPoints(StepState &S) {
   pc.pic = sim.set.chain_pic;
   PetscCall(GridWithLocal(g, false, [&](const GridView &G) {
     for (Chain &c : sim.chains) {
-      g2p_chain(c, G, g, pc);
+      g2p_chain(c, G, g, pc, sim.model.iface.tail_share);
       chain_pack(c, part);
       buf.insert(buf.end(), part.begin(), part.end());
     }

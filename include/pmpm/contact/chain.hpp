@@ -194,8 +194,11 @@ void p2g_chain(const Chain &c, const Load &load, const GridView &G, const Grid &
 bool chain_point_weights(const Chain &c, int i, const GridView &G, const Grid &grid,
                          Weights<UGIMPShape> &W);
 // Points this rank owns (Chain::owned): FLIP/PIC velocity, position; slip and pressure on each
-// face from the neighbouring bodies. The caller shares them (chain_pack, allreduce, unpack).
-void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm);
+// face from the neighbouring bodies (a body counts at a node above tail_share of the node's
+// mass: -interface_tail_share, as the 3D sheet's, step/sheets.cpp). The caller shares them
+// (chain_pack, allreduce, unpack).
+void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &prm,
+               double tail_share);
 // Pack / unpack the fields the owner updates, for the allreduce.
 void chain_pack(const Chain &c, std::vector<double> &buf);
 void chain_unpack(Chain &c, const std::vector<double> &buf);

@@ -138,6 +138,11 @@ void sheet_disc(double R, double ds, const double c[3], Sheet &s);
 // preferred). Nothing pinned. Sets x = x0, v = 0 and the reference (sheet_reference).
 void sheet_rectangle(double x0, double dx, int nx, double z0, double dz, int nz, double y,
                      Sheet &s);
+// A line (x_i, y_i), i = 0 .. nx - 1 (xy: 2 per point), swept along z: points at z = z0 + j dz
+// (j = 0 .. nz - 1), numbered and triangulated as sheet_rectangle's (a level line with
+// x_i = x0 + i dx is that rectangle). A sloped or bent line gives a ruled sheet: a cover's
+// membrane over a side slope and its crest. Nothing pinned; x = x0, v = 0, the reference.
+void sheet_strip(const double *xy, int nx, double z0, double dz, int nz, Sheet &s);
 // The reference geometry from x0: areas, D^-1, bases; point areas, masses and weights.
 void sheet_reference(Sheet &s);
 // Strains, tensions and the internal point forces f from the current positions x.

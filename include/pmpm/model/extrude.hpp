@@ -17,8 +17,9 @@
 // cell apart across, from z = 0 to z = depth (the edge rows held in z where the z faces are
 // rollers), the end force spread over the last column by the points' widths; the plane's
 // particles take their bodies from the chains' lines before the extrusion (AssignBodies). A
-// chain must be straight and level for now (sheet_rectangle); the scene's results read the
-// sheet under -dim 3 (the pull-out does).
+// level chain is a rectangle (sheet_rectangle), a sloped or bent one its line swept along z
+// (sheet_strip); the chain's x must increase along it. The scene's results read the sheet under
+// -dim 3 (the pull-out and the cover do).
 //
 // What the 3D step does not run yet is refused before the run, by name (ExtrusionCheck): the
 // step's hooks that act inside the step's phases (the colour interface, an imposed

@@ -134,6 +134,13 @@ public:
   // -dim 3: the material of an extruded particle centred at x, given its plane particle's (a
   // zone bounded in z, or round in plan). Default: the plane's.
   virtual int extruded_material(const double[3], int mat) const { return mat; }
+  // -dim 3: the height at z of a point at height y of the plane at x, and dy'/dy there in
+  // *stretch (a scene whose surface rises along z: the cover's -cover_deck_grade_z stretches its
+  // waste and lifts what lies on it). Default: the plane's height, no stretch.
+  virtual double extruded_height(double /*x*/, double y, double /*z*/, double *stretch) const {
+    *stretch = 1;
+    return y;
+  }
   // True when the later stages have no meaning any more (a footing that collapsed).
   virtual bool finished() const { return false; }
   // Checkpoint and restart (checkpoint.hpp): the scene's own state that changes during a run
