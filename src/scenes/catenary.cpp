@@ -80,14 +80,10 @@ public:
     PetscCall(PmpmOptionsReal("-second_drop", "How far the second chain hangs below the first (m)",
                               nullptr, drop_, &drop_, &drop_set));
     PetscOptionsEnd();
-    PetscOptionsBegin(sim.comm, "membrane_", "The membrane", nullptr);
-    PetscCall(
-        PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
-    PetscOptionsEnd();
+    PetscCall(MembraneThicknessOption(sim.comm, "The membrane", &t_));
     PmpmCheckInput(span_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-catenary_span must be > 0 (got %g)", span_);
-    PmpmCheckInput(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-membrane_thickness must be > 0 (got %g)", t_);
+    PetscCall(CheckMembraneThickness(sim.comm, t_));
     const double h = sim.set.h;
     axi_ = sim.set.geometry == Geometry::Axisymmetric;
     PmpmCheckInput(!axi_ || (!second_ && off_[0] == 0), sim.comm, PETSC_ERR_ARG_INCOMP,

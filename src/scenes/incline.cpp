@@ -76,10 +76,7 @@ public:
                               "-dim 3: the block's extent along z (m); 0: the whole depth", nullptr,
                               Wb_, &Wb_, nullptr));
     PetscOptionsEnd();
-    PetscOptionsBegin(sim.comm, "membrane_", "The membrane (with -incline_chain)", nullptr);
-    PetscCall(PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, thickness_,
-                              &thickness_, nullptr));
-    PetscOptionsEnd();
+    PetscCall(MembraneThicknessOption(sim.comm, "The membrane (with -incline_chain)", &thickness_));
     PmpmCheckInput(theta_ >= 0 && theta_ <= 80, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-incline_angle must be in [0, 80] degrees (got %g)", theta_);
     PetscInt n;
@@ -126,8 +123,7 @@ public:
       ChainSpec cs;
       cs.name = "membrane";
       cs.material = "membrane";
-      PmpmCheckInput(thickness_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                     "-membrane_thickness must be > 0 (got %g)", thickness_);
+      PetscCall(CheckMembraneThickness(sim.comm, thickness_));
       cs.thickness = thickness_;
       cs.pin_start = cs.pin_end = pin_;
       cs.line = {h, Hbase_, Lbase_ - h, Hbase_};

@@ -111,4 +111,20 @@ PetscErrorCode SumAll(MPI_Comm comm, double *v, int n) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode MembraneThicknessOption(MPI_Comm comm, const char *title, double *t) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "membrane_", title, nullptr);
+  PetscCall(
+      PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, *t, t, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckMembraneThickness(MPI_Comm comm, double t) {
+  PetscFunctionBeginUser;
+  PmpmCheckInput(t > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-membrane_thickness must be > 0 (got %g)",
+                 t);
+  PetscFunctionReturn(0);
+}
+
 } // namespace pmpm

@@ -27,14 +27,10 @@ public:
     PetscCall(PmpmOptionsReal("-radius", "Radius a of the sheet (m), > 0", nullptr, radius_,
                               &radius_, nullptr));
     PetscOptionsEnd();
-    PetscOptionsBegin(sim.comm, "membrane_", "The membrane", nullptr);
-    PetscCall(
-        PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
-    PetscOptionsEnd();
+    PetscCall(MembraneThicknessOption(sim.comm, "The membrane", &t_));
     PmpmCheckInput(radius_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-sheet_radius must be > 0 (got %g)", radius_);
-    PmpmCheckInput(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-membrane_thickness must be > 0 (got %g)", t_);
+    PetscCall(CheckMembraneThickness(sim.comm, t_));
     // the material as a chain's (-mat_membrane_*): E, nu, gamma, density, law
     ChainSpec cs;
     cs.name = cs.material = "membrane";

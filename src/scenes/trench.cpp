@@ -386,10 +386,7 @@ public:
                              "pull-in, pressures); 0: none",
                              nullptr, every_, &every_, nullptr));
     PetscOptionsEnd();
-    PetscOptionsBegin(sim.comm, "membrane_", "The membrane", nullptr);
-    PetscCall(
-        PmpmOptionsReal("-thickness", "Membrane thickness t (m), > 0", nullptr, t_, &t_, nullptr));
-    PetscOptionsEnd();
+    PetscCall(MembraneThicknessOption(sim.comm, "The membrane", &t_));
     const double h = sim.set.h;
     PetscInt nB, nD, nH, nHb, nLa, nM;
     PetscCall(CheckCells(sim.comm, "-trench_width", B_, h, &nB));
@@ -408,8 +405,7 @@ public:
         "-trench_surface_offset must be 0 or 0.5, and 0.5 needs an even -ppc (no particle "
         "centre on a face; got %g with -ppc %" PetscInt_FMT ")",
         offset_, sim.set.ppc);
-    PmpmCheckInput(t_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-membrane_thickness must be > 0 (got %g)", t_);
+    PetscCall(CheckMembraneThickness(sim.comm, t_));
     // x: the trench centred at W / 2
     W_ = B_ + 2 * La_ + 2 * margin_;
     xc_ = 0.5 * W_;

@@ -39,4 +39,10 @@ PetscErrorCode GatherToRoot(MPI_Comm comm, const std::vector<double> &mine,
 // Sum of values over all ranks.
 PetscErrorCode SumAll(MPI_Comm comm, double *v, int n);
 
+// The scenes' one membrane ("membrane", -mat_membrane_*): its thickness -membrane_thickness (m)
+// read in its own options block titled `title`, and the check that it is > 0 (a scene whose
+// membrane is optional checks it only when there is one).
+PetscErrorCode MembraneThicknessOption(MPI_Comm comm, const char *title, double *t);
+PetscErrorCode CheckMembraneThickness(MPI_Comm comm, double t);
+
 } // namespace pmpm
