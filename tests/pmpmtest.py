@@ -127,13 +127,34 @@ def compare_extruded(c, name, p2, p3, nz, length, unit):
     return x2, f2["position0"][parent]
 
 
+def degradation_stages(c, what, d, rows, strain, tol):
+    """Stages 1 and 2 of a uniform-degradation run in d (stages.csv rows): the top row of waste
+    settles by y (1 - exp(-strain)) of its height before the stage within tol (relative), the
+    membrane by the waste's settlement within 2 %, its strain stays zero (< 1e-5). Returns the
+    waste's settlement per stage."""
+    import math
+    y = [waste_top(d, k) for k in range(3)]
+    settled = []
+    for k in (1, 2):
+        exact = y[k - 1] * (1 - math.exp(-strain))
+        sim = y[k - 1] - y[k]
+        settled.append(sim)
+        c.le(f"{what}, stage {k}: waste settlement against the closed form (relative)",
+             abs(sim / exact - 1), tol)
+        ms = float(rows[k]["membrane_settlement"]) - float(rows[k - 1]["membrane_settlement"])
+        c.le(f"{what}, stage {k}: membrane settlement against the waste's (relative)",
+             abs(ms / sim - 1), 0.02)
+        c.le(f"{what}, stage {k}: membrane strain stays zero",
+             abs(float(rows[k]["peak_strain"])), 1e-5)
+    return settled
+
+
 def uniform_degradation(c, exe, np_, out, extra=(), label=""):
     """tests/cover_column.opts (4 m of linear elastic waste under 0.5 m of soil on a sheet, e_v =
     0.05 per stage in two stages), vertical and isotropic eigenstrain, with `extra` options: each
     stage's settlement of the top row of waste against the uniaxial-strain closed form within
     0.5 %, the sheet's settlement against the waste's within 2 %, its strain zero (< 1e-5), every
     stage converged (tests/test_cover.py's docstring says why)."""
-    import math
     nu, ev = 0.3, 0.05  # per stage
     for mode, factor in (("vertical", 1.0), ("isotropic", (1 + nu) / (1 - nu) / 3)):
         d = f"{out}/degradation_{mode}"
@@ -144,14 +165,4 @@ def uniform_degradation(c, exe, np_, out, extra=(), label=""):
         c.check(f"{what}: three stages recorded, all converged",
                 len(rows) == 3 and all(r["converged"] == "1" for r in rows),
                 f"({[r['steps'] for r in rows]} steps)")
-        y = [waste_top(d, k) for k in range(3)]
-        for k in (1, 2):
-            exact = y[k - 1] * (1 - math.exp(-factor * ev))
-            sim = y[k - 1] - y[k]
-            c.le(f"{what}, stage {k}: waste settlement against the closed form (relative)",
-                 abs(sim / exact - 1), 0.005)
-            ms = float(rows[k]["membrane_settlement"]) - float(rows[k - 1]["membrane_settlement"])
-            c.le(f"{what}, stage {k}: membrane settlement against the waste's (relative)",
-                 abs(ms / sim - 1), 0.02)
-            c.le(f"{what}, stage {k}: membrane strain stays zero",
-                 abs(float(rows[k]["peak_strain"])), 1e-5)
+        degradation_stages(c, what, d, rows, factor * ev, 0.005)

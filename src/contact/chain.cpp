@@ -536,9 +536,7 @@ void g2p_chain(Chain &c, const GridView &G, const Grid &grid, const G2PParams &p
         // 0.25, 0.125 m, the shear over half a cell, on an elastic degrading cover; a tail's
         // velocity is the node's common one, or a round-off mass's meaningless one: FaceSlips-
         // AndPressures, step/sheets.cpp)
-        double msum = 0;
-        for (int b = 0; b < G.nbody; ++b) msum += node[b * ND + GridDof::M];
-        const double tail = tail_share * msum;
+        const double tail = tail_share * G.body_mass_sum(node);
         if (na[GridDof::M] > tail) {
           for (int d = 0; d < DIM; ++d) va[d] += w * (nc[GridDof::P + d] - na[GridDof::P + d]);
           ma += w;
@@ -807,8 +805,7 @@ void contact_bodies(const GridView &G, const std::vector<Chain> &chains, const C
   for (PetscInt j = G.gs[1]; j < G.gs[1] + G.gm[1]; ++j)
     for (PetscInt i = G.gs[0]; i < G.gs[0] + G.gm[0]; ++i) {
       double *node = G.node(i, j);
-      double msum = 0;
-      for (int b = 0; b < nb; ++b) msum += node[b * ND + GridDof::M];
+      const double msum = G.body_mass_sum(node);
       if (msum <= 0) continue;
       // every body with mass takes part (a share cut-off at round-off level decided differently
       // on different rank counts); tiny shares follow the tail rule (below)

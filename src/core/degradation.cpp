@@ -5,15 +5,27 @@
 
 namespace pmpm {
 
+namespace {
+// The plan factor a distance d > 0 beyond the zone: linear to 0 over the taper (none: 0).
+double taper_factor(const Shrinkage &s, double d) {
+  return s.taper > 0 ? std::max(0.0, 1 - d / s.taper) : 0.0;
+}
+// The grade at height y inside [y_lo, y_hi], times the plan factor g: linear from the base's
+// factor to the top's.
+double graded(const Shrinkage &s, double y, double g) {
+  const double span = s.y_hi - s.y_lo;
+  const double r = span > 0 && std::isfinite(span) ? (y - s.y_lo) / span : 0.5;
+  return g * (s.grade_bottom + r * (s.grade_top - s.grade_bottom));
+}
+} // namespace
+
 double shrinkage_grade(const Shrinkage &s, const double X[DIM]) {
   const double x = X[0], y = X[1];
   if (y < s.y_lo || y > s.y_hi) return 0;
   double gx = 1;
-  if (x < s.x_lo) gx = s.taper > 0 ? std::max(0.0, 1 - (s.x_lo - x) / s.taper) : 0.0;
-  if (x > s.x_hi) gx = s.taper > 0 ? std::max(0.0, 1 - (x - s.x_hi) / s.taper) : 0.0;
-  const double span = s.y_hi - s.y_lo;
-  const double r = span > 0 && std::isfinite(span) ? (y - s.y_lo) / span : 0.5;
-  return gx * (s.grade_bottom + r * (s.grade_top - s.grade_bottom));
+  if (x < s.x_lo) gx = taper_factor(s, s.x_lo - x);
+  if (x > s.x_hi) gx = taper_factor(s, x - s.x_hi);
+  return graded(s, y, gx);
 }
 
 double shrinkage_grade3(const Shrinkage &s, const double X[3]) {
@@ -21,11 +33,7 @@ double shrinkage_grade3(const Shrinkage &s, const double X[3]) {
   const double y = X[1];
   if (y < s.y_lo || y > s.y_hi) return 0;
   const double r = std::hypot(X[0] - s.cx, X[2] - s.cz);
-  double gr = 1;
-  if (r > s.radius) gr = s.taper > 0 ? std::max(0.0, 1 - (r - s.radius) / s.taper) : 0.0;
-  const double span = s.y_hi - s.y_lo;
-  const double t = span > 0 && std::isfinite(span) ? (y - s.y_lo) / span : 0.5;
-  return gr * (s.grade_bottom + t * (s.grade_top - s.grade_bottom));
+  return graded(s, y, r > s.radius ? taper_factor(s, r - s.radius) : 1.0);
 }
 
 template <int D>

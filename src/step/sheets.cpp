@@ -133,9 +133,7 @@ void FaceSlipsAndPressures(const Sheet &s, int i, const GridViewT<3> &G,
     const double *node =
         G.node(W.base[0] + k % NS, W.base[1] + (k / NS) % NS, W.base[2] + k / (NS * NS));
     const double *nc = node + body, *na = node + above, *nb = node + below, *ns = node + s.slot;
-    double msum = 0;
-    for (int b = 0; b < G.nbody; ++b) msum += node[b * ND + G3::M];
-    const double tail = tail_share * msum;
+    const double tail = tail_share * G.body_mass_sum(node);
     if (na[G3::M] > tail) {
       for (int d = 0; d < 3; ++d) va[d] += w * (nc[G3::P + d] - na[G3::P + d]);
       ma += w;

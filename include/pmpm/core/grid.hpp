@@ -56,6 +56,12 @@ template <int D> struct GridViewT {
     static_assert(D == 3, "node(i, j, k): 3D");
     return data + (((k - gs[2]) * rows() + (j - gs[1])) * row() + (i - gs[0])) * nd;
   }
+  // the mass of all bodies at a node (node: its first block), summed body by body
+  double body_mass_sum(const double *node) const {
+    double m = 0;
+    for (int b = 0; b < nbody; ++b) m += node[b * GridDofT<D>::NDOF + GridDofT<D>::M];
+    return m;
+  }
   // doubles between neighbouring nodes along y (a row) and z (a plane)
   PetscInt row_stride() const { return row() * nd; }
   PetscInt plane_stride() const { return D == 3 ? rows() * row() * nd : 0; }
