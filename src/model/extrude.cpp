@@ -184,7 +184,8 @@ void Extrude(const Simulation &sim, const ParticleList &plane, ParticleListT<3> 
       p.mat = q.mat;
       p.pid = q.pid * nz + k;
       p.body = q.body;
-      p.load = q.load; // its plane particle's entry of sim.model.loads3
+      // its plane particle's entry of sim.model.loads3, where the scene loads it
+      p.load = q.load >= 0 && sim.scene->extruded_loaded(p.x) ? q.load : -1;
       const int mat = sim.scene->extruded_material(p.x, p.mat);
       if (mat != p.mat) { // its own material at its 3D position (a scene's zone)
         p.mat = mat;

@@ -1,6 +1,6 @@
-// A smooth strip footing on weightless soil (docs/method.md, section 2.6), loaded in pressure
-// stages: the bearing capacity is bracketed between the largest pressure at which the soil finds
-// equilibrium and the first at which it does not.
+// A smooth strip or circular footing on weightless soil (docs/method.md, section 2.6), loaded in
+// pressure stages: the bearing capacity is bracketed between the largest pressure at which the
+// soil finds equilibrium and the first at which it does not.
 //
 // Half the problem by symmetry: soil of half-width W and depth D, x = 0 the footing's centre line
 // (roller), far side on rollers, base fixed. The footing is a uniform pressure q on the surface
@@ -8,6 +8,19 @@
 // for a smooth rigid one). Stage k loads q_k of -footing_pressures; a stage that settles past
 // -footing_collapse_settlement x B, or reaches its step cap, before it finds equilibrium has
 // collapsed, and the run stops there.
+//
+// -footing_shape circle: a uniform pressure on a disc of diameter B, run round by
+// -geometry axisymmetric (x the radius) or in 3D (-dim 3 -depth W: a quarter of the problem, the
+// symmetry planes x = 0 and z = 0 on rollers, the particles of the surface row whose centres lie
+// inside the disc loaded: its staircase is a particle face fine). Its reference is Shield's exact
+// limit pressure of a smooth rigid circular punch on a Tresca half-space, 5.69 k (Shield 1955,
+// Proc. R. Soc. Lond. A 233, 267-287), an upper bound for the uniform pressure on von Mises soil
+// with the same k: the punch's mechanism moves the loaded disc down as one, so a uniform pressure
+// does the punch's work on it, and von Mises with k = sigma_y / sqrt(3) dissipates no more than
+// Tresca with that k in any flow (its yield surface lies inside Tresca's). The load's edge gives a
+// smaller upper bound: a Prandtl mechanism there, small beside B, is a plane-strain one and needs
+// only (2 + pi) k. No exact value is known for the uniform load; the axisymmetric run is the 3D
+// run's independent check (docs/method.md, section 2.6).
 //
 // Exact limit loads for a weightless half-space: von Mises in plane strain (Tresca with
 // k = sigma_y / sqrt(3)) q_u = (2 + pi) k (Prandtl 1920); Drucker-Prager matched to Mohr-Coulomb
@@ -33,8 +46,18 @@
 
 namespace pmpm {
 
+enum class FootingShape { Strip = 0, Circle = 1 };
+constexpr const char *FootingShapeNames[] = {"strip", "circle", "FootingShape", "FOOTING_",
+                                             nullptr};
+// Shield's mean pressure over k under a smooth rigid circular punch on a Tresca half-space
+constexpr double kShieldNc = 5.69;
+
 class FootingScene final : public Scene {
   double B_ = 1.0, W_ = 0, D_ = 0;
+  FootingShape shape_ = FootingShape::Strip;
+  // -geometry axisymmetric: the pressure the load table carries now (its tractions carry each
+  // particle's radius, geometry.hpp, so a new pressure rescales them)
+  double q_table_ = 0;
   std::vector<double> q_; // stage pressures (Pa)
   PetscInt ramp_ = 0;     // steps over which a later stage raises the pressure
   double collapse_ = 0.2; // settlement (in B) past which a stage has collapsed
@@ -49,21 +72,29 @@ class FootingScene final : public Scene {
   // length (its block's width). Every rank sets the whole table alike.
   PetscErrorCode set_pressure(Simulation &sim, double q) {
     PetscFunctionBeginUser;
+    if (sim.set.geometry == Geometry::Axisymmetric) {
+      for (ParticleLoad &L : sim.model.loads) L.traction[1] *= q / q_table_;
+      q_table_ = q;
+      PetscFunctionReturn(0);
+    }
     for (ParticleLoad &L : sim.model.loads) L.traction[1] = -q * 2.0 * L.lp[0];
     if (sim.set.dim == 3) PetscCall(ExtrudeLoads(sim)); // the step reads the extruded table
     PetscFunctionReturn(0);
   }
 
-  // Mean vertical displacement of the loaded particles (the footing's settlement, positive down).
+  // Mean vertical displacement of the loaded particles (the footing's settlement, positive down);
+  // -geometry axisymmetric: weighted by their loads (their faces' areas).
   PetscErrorCode settlement(Simulation &sim, double *s) {
     ParticleView P;
     double v[2] = {0, 0};
     const int D = sim.parts.dim; // -dim 3: extruded
+    const bool axi = sim.set.geometry == Geometry::Axisymmetric;
     PetscFunctionBeginUser;
     PetscCall(ParticlesGetView(sim.parts, P));
     for (const PetscInt p : sim.traction_idx) {
-      v[0] += P.x0[p * D + 1] - P.x[p * D + 1];
-      v[1] += 1;
+      const double w = axi ? -sim.model.loads[P.load[p]].traction[1] : 1.0;
+      v[0] += w * (P.x0[p * D + 1] - P.x[p * D + 1]);
+      v[1] += w;
     }
     PetscCall(ParticlesRestoreView(sim.parts, P));
     PetscCall(SumAll(sim.comm, v, 2));
@@ -87,8 +118,16 @@ class FootingScene final : public Scene {
     return 0.5 * B_ + 2 * r1 * std::cos(M_PI / 4 - phi / 2);
   }
 
+  // The strip's exact limit pressure; the circle's reference (Shield's, for phi = 0; 0: none).
   double exact(const Simulation &sim) const {
     const Material &m = *sim.model.mats[0].model;
+    if (shape_ == FootingShape::Circle) {
+      if (const auto *vm = dynamic_cast<const VonMises *>(&m))
+        return kShieldNc * vm->params().sigma_y0 / std::sqrt(3.0);
+      if (const auto *dp = dynamic_cast<const DruckerPrager *>(&m))
+        return phi_rad(sim) <= 0 ? kShieldNc * dp->params().cohesion : 0.0;
+      return 0;
+    }
     if (const auto *vm = dynamic_cast<const VonMises *>(&m))
       return (2.0 + M_PI) * vm->params().sigma_y0 / std::sqrt(3.0);
     if (const auto *dp = dynamic_cast<const DruckerPrager *>(&m)) {
@@ -102,9 +141,12 @@ class FootingScene final : public Scene {
   }
 
 public:
-  // -dim 3: the strip extruded between rollers (plane strain; with -fbar, 3D F-bar), its
-  // settlement and pressure read in any dimension
+  // -dim 3: the strip extruded between rollers (plane strain; with -fbar, 3D F-bar), or the
+  // circle's quarter; its settlement and pressure read in any dimension
   bool extrudes() const override { return true; }
+  bool extruded_loaded(const double x[3]) const override {
+    return shape_ == FootingShape::Strip || x[0] * x[0] + x[2] * x[2] < 0.25 * B_ * B_;
+  }
 
   PetscErrorCode setup(Simulation &sim) override {
     PetscInt n = 64;
@@ -113,8 +155,15 @@ public:
     PetscFunctionBeginUser;
     q_.assign(n, 0.0);
     ramp_ = sim.set.ramp_steps;
-    PetscOptionsBegin(sim.comm, "footing_", "Strip footing on weightless soil", nullptr);
-    PetscCall(PmpmOptionsReal("-width", "Footing width B (m), > 0", nullptr, B_, &B_, nullptr));
+    PetscOptionsBegin(sim.comm, "footing_", "Strip or circular footing on weightless soil",
+                      nullptr);
+    PetscCall(PmpmOptionsReal("-width", "Footing width B (m; a circle's diameter), > 0", nullptr,
+                              B_, &B_, nullptr));
+    PetscCall(PmpmOptionsEnum("-shape",
+                              "strip (plane strain, or extruded by -dim 3) or circle (-geometry "
+                              "axisymmetric, or -dim 3 with -depth the soil width)",
+                              nullptr, FootingShapeNames, (PetscEnum)shape_, (PetscEnum *)&shape_,
+                              nullptr));
     PetscCall(PmpmOptionsReal("-soil_width",
                               "Soil half-width W from the centre line (m); default 3 B", nullptr,
                               W_, &W_, &w_set));
@@ -147,6 +196,14 @@ public:
                    "-footing_soil_width must be > 0 m (got %g; default 3 B)", W_);
     PmpmCheckInput(!d_set || D_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-footing_soil_depth must be > 0 m (got %g; default 2 B)", D_);
+    const bool axi = sim.set.geometry == Geometry::Axisymmetric;
+    PmpmCheckInput(shape_ == FootingShape::Circle || !axi, sim.comm, PETSC_ERR_ARG_INCOMP,
+                   "-footing_shape strip is plane: under -geometry axisymmetric use "
+                   "-footing_shape circle");
+    PmpmCheckInput(shape_ == FootingShape::Strip || axi || sim.set.dim == 3, sim.comm,
+                   PETSC_ERR_ARG_INCOMP,
+                   "-footing_shape circle needs -geometry axisymmetric or -dim 3 (a plane "
+                   "section has no circle)");
     if (W_ <= 0) W_ = 3 * B_; // reach 3.03 B at phi = 20 deg: set it for such soils
     if (D_ <= 0) D_ = 2 * B_;
     PetscInt nb, nw, nd;
@@ -173,6 +230,12 @@ public:
         "%.2f B from the centre line for this soil (1.5 B for phi = 0, 3.03 B for 20 deg), "
         "and a side closer than that raises the capacity",
         W_, reach, reach / B_);
+    PmpmCheckInput(shape_ == FootingShape::Strip || sim.set.dim == 2 || sim.set.depth >= reach,
+                   sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-depth (%g m) must be at least %g m for -footing_shape circle: the quarter "
+                   "model's z side must lie as far from the centre as its x side",
+                   sim.set.depth, reach);
+    q_table_ = q_[0];
     PetscFunctionReturn(0);
   }
 
@@ -229,8 +292,31 @@ public:
     steps_.push_back(sim.run.stage_step);
     collapsed_ = !sim.run.converged;
     if (!sim.set.quiet)
-      PetscCall(PetscPrintf(sim.comm, "footing: q = %.6g Pa (%.4f of q_u) %s, settlement %.4g m\n",
-                            q_[k], q_[k] / exact(sim), collapsed_ ? "collapsed" : "holds", s));
+      PetscCall(PetscPrintf(sim.comm, "footing: q = %.6g Pa (%.4f of %s) %s, settlement %.4g m\n",
+                            q_[k], q_[k] / exact(sim),
+                            shape_ == FootingShape::Strip ? "q_u" : "Shield's 5.69 k",
+                            collapsed_ ? "collapsed" : "holds", s));
+    PetscFunctionReturn(0);
+  }
+
+  // The circle's loaded area over the disc's (quarter of it in 3D, per radian under
+  // -geometry axisymmetric): the faces of the loaded particles, as the pressure acts on them.
+  PetscErrorCode loaded_area_ratio(Simulation &sim, double *ratio) {
+    ParticleView P;
+    double A = 0;
+    const double a = 0.5 * B_;
+    PetscFunctionBeginUser;
+    PetscCall(ParticlesGetView(sim.parts, P));
+    for (const PetscInt p : sim.traction_idx) {
+      if (sim.parts.dim == 3) {
+        const ParticleLoadT<3> &L = sim.model.loads3[P.load[p]];
+        A += 4.0 * L.lp[0] * L.lp[2];
+      } else
+        A += -sim.model.loads[P.load[p]].traction[1] / q_table_;
+    }
+    PetscCall(ParticlesRestoreView(sim.parts, P));
+    PetscCall(SumAll(sim.comm, &A, 1));
+    *ratio = A / (sim.parts.dim == 3 ? 0.25 * M_PI * a * a : 0.5 * a * a);
     PetscFunctionReturn(0);
   }
 
@@ -243,6 +329,7 @@ public:
     PetscCall(CheckpointWriteArray(v, "settlement", settle_));
     PetscCall(CheckpointWriteArray(v, "steps", steps));
     PetscCall(CheckpointWriteReal(v, "q_prev", q_prev_));
+    PetscCall(CheckpointWriteReal(v, "q_table", q_table_));
     PetscFunctionReturn(0);
   }
   PetscErrorCode checkpoint_read(Simulation &, PetscViewer v) override {
@@ -253,6 +340,7 @@ public:
     PetscCall(CheckpointReadArray(v, "settlement", settle_));
     PetscCall(CheckpointReadArray(v, "steps", steps));
     PetscCall(CheckpointReadReal(v, "q_prev", &q_prev_));
+    PetscCall(CheckpointReadReal(v, "q_table", &q_table_));
     held_.assign(held.begin(), held.end());
     steps_.assign(steps.begin(), steps.end());
     collapsed_ = false; // a checkpoint is never written after a collapse
@@ -271,8 +359,18 @@ public:
            ",\n    " +
            (upper > 0 ? json_kv("bearing_capacity_upper", upper)
                       : std::string("\"bearing_capacity_upper\": null")) +
-           ",\n    " + json_kv("bearing_capacity_exact", qu) + ",\n    " +
-           json_kv("fbar", sim.set.fbar ? 1.0 : 0.0) + ",\n    \"stages\": [";
+           ",\n    ";
+    if (shape_ == FootingShape::Strip) {
+      json += json_kv("bearing_capacity_exact", qu) + ",\n    ";
+    } else {
+      double area = 0;
+      PetscCall(loaded_area_ratio(sim, &area));
+      json += std::string("\"footing_shape\": \"circle\",\n    ") +
+              (qu > 0 ? json_kv("bearing_capacity_shield", qu)
+                      : std::string("\"bearing_capacity_shield\": null")) +
+              ",\n    " + json_kv("loaded_area_ratio", area) + ",\n    ";
+    }
+    json += json_kv("fbar", sim.set.fbar ? 1.0 : 0.0) + ",\n    \"stages\": [";
     for (size_t k = 0; k < held_.size(); ++k) {
       char row[200];
       std::snprintf(row, sizeof(row),

@@ -39,7 +39,7 @@ const std::vector<SceneEntry> &Scenes() {
       {"cover", make_cover_scene,
        "landfill cover at field scale, described in an options file (method.md 7, cover.md)"},
       {"footing", make_footing_scene,
-       "strip footing: bearing capacity in pressure stages (method.md 2.6)"},
+       "strip or circular footing: bearing capacity in pressure stages (method.md 2.6)"},
       {"trapdoor", make_trapdoor_scene,
        "active trapdoor in cohesionless soil (method.md 6.4, trapdoor.md)"},
       {"cylinder", make_cylinder_scene,

@@ -134,6 +134,9 @@ public:
   // -dim 3: the material of an extruded particle centred at x, given its plane particle's (a
   // zone bounded in z, or round in plan). Default: the plane's.
   virtual int extruded_material(const double[3], int mat) const { return mat; }
+  // -dim 3: whether an extruded particle centred at x (3 coordinates) carries its plane
+  // particle's surface load (a load that is round in plan: the circular footing). Default: yes.
+  virtual bool extruded_loaded(const double[3]) const { return true; }
   // -dim 3: the height at z of a point at height y of the plane at x, and dy'/dy there in
   // *stretch (a scene whose surface rises along z: the cover's -cover_deck_grade_z stretches its
   // waste and lifts what lies on it). Default: the plane's height, no stretch.
