@@ -19,11 +19,14 @@ Asserted (stages 0.9, 1.0, 1.2: the 1.1 stage takes 7,600 steps, a third of the 
 1. both hold at 0.9 and 1.0 and collapse at 1.2;
 2. 3D settlement against the axisymmetric one within 6 % at 0.9 and 1.0 (measured 4.6 and 2.9 %:
    the 3D disc is a staircase of particle faces, 3.5 % larger than the circle);
-3. the loaded area: the axisymmetric disc's to 1e-12, the 3D staircase's within 5 %.
+3. the loaded area: the axisymmetric disc's to 1e-12, the 3D staircase's within 5 %;
+4. 300 fixed steps of the 3D quarter on 1 and 2 ranks: the same particles (the loaded ones are
+   chosen per extruded particle on each rank), positions and stresses to 1e-10.
 """
 import math
 import sys
-from pmpmtest import Checks, run, summary
+import numpy as np
+from pmpmtest import Checks, particles, run, summary
 
 exe, out = sys.argv[1], sys.argv[2]
 c = Checks("footing_circle")
@@ -51,4 +54,19 @@ c.le("3D loaded area (a staircase of faces) over the quarter disc's, - 1",
      abs(r3["loaded_area_ratio"] - 1), 0.05)
 c.le("Shield's reference in the summary, relative", abs(ra["bearing_capacity_shield"] / shield
                                                         - 1), 1e-9)
+
+# 4. the 3D quarter on 1 and 2 ranks
+FIXED = BASE + ["-dim", "3", "-depth", "2", "-max_steps", "300"]
+res = {}
+for n in (1, 2):
+    run(exe, n, FIXED, f"{out}/np{n}", capped=True)
+    res[n] = particles(f"{out}/np{n}", ("position", "stress"))
+(ids1, f1), (ids2, f2) = res[1], res[2]
+same = len(ids1) == len(ids2) and np.array_equal(ids1, ids2)
+c.check("2 ranks: the same particles as 1 rank", same, f"({len(ids1)}, {len(ids2)})")
+if same:
+    c.le("2 ranks: positions against 1 rank (of B)",
+         np.abs(f2["position"] - f1["position"]).max(), 1e-10)
+    c.le("2 ranks: stresses against 1 rank (of the largest)",
+         np.abs(f2["stress"] - f1["stress"]).max() / np.abs(f1["stress"]).max(), 1e-10)
 c.done()

@@ -232,8 +232,8 @@ public:
         W_, reach, reach / B_);
     PmpmCheckInput(shape_ == FootingShape::Strip || sim.set.dim == 2 || sim.set.depth >= reach,
                    sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
-                   "-depth (%g m) must be at least %g m for -footing_shape circle: the quarter "
-                   "model's z side must lie as far from the centre as its x side",
+                   "-depth (%g m) must be at least %g m for -footing_shape circle: the "
+                   "quarter's z side must lie beyond the mechanism's reach, as its x side does",
                    sim.set.depth, reach);
     q_table_ = q_[0];
     PetscFunctionReturn(0);
