@@ -16,10 +16,10 @@ weightless, and floated off the base: -chain_inertia_scaling follows -inertia_sc
 wave (1,000 m/s against the block's 82) sets the step: 55,000 steps for the 0.49 s of the run.
 Measured (1 rank; 2 ranks agree to the digits shown), h = 0.02 m:
   mu = 0 within -0.037 %, mu = 0.3 within -0.041 %, mu = 0.7 sticks (0.15 % of g sin theta),
-  mu = 10 against bonded 0.11 mm, mu = 0.3 at h = 0.01 m -1.04 % (110,000 steps: run by hand
-  with --refine), mu = 0.5 (a = 0.657, near the sticking limit: -6.1 %; printed, as the
-  resolved interface's contact drifts there too, docs/limitations.md).
-Two ranks repeat mu = 0.3 and the sticking case (the rest is rank-invariant, tested).
+  mu = 10 against bonded 0.11 mm, mu = 0.3 at h = 0.01 m -1.04 % (110,000 steps), mu = 0.5
+  (a = 0.657, near the sticking limit: -6.1 %; printed, as the resolved interface's contact
+  drifts there too, docs/limitations.md): these two run by hand with --refine.
+Two ranks repeat mu = 0.3, the sliding contact (the rest is rank-invariant, tested).
 Friction capacity: each sheet point's pressure times its length (contact_bodies' normal pass and
 chain_friction_capacity); with each node's own normal impulse the same run gave -2.1 % at mu = 0.3.
 """
@@ -57,7 +57,6 @@ def held(what, r):
 STEPS = ["-max_steps", "55000"]  # 0.49 s, the duration of options/incline.opts
 if np == 2:
     slide("contact_0.3", "contact, mu = 0.3", "-interface_mu_top", "0.3", *STEPS)
-    stick("contact_stick", "contact, mu = 0.7 > tan 30", "-interface_mu_top", "0.7", *STEPS)
     c.done()
 bonded = case("bonded", "-interface_type", "bonded", *STEPS)
 c.check("bonded: the chain is in the scene and the block sits on it", "sheet_max_displacement_x" in bonded)
@@ -78,7 +77,8 @@ for h, r in runs:
     print(f"info mu = 0.3, h = {h} m: a = {r['acceleration']:.5f} (exact {r['acceleration_exact']:.5f}, "
           f"{100 * (r['acceleration'] / r['acceleration_exact'] - 1):+.3f} %), sheet moved "
           f"{1e3 * r['sheet_max_displacement_x']:.3f} mm along, lifted {1e3 * r['sheet_max_displacement_y']:.3f} mm")
-r = case("contact_0.5", "-interface_mu_top", "0.5", *STEPS)
-print(f"info mu = 0.5 (near the sticking limit): a = {r['acceleration']:.5f} (exact "
-      f"{r['acceleration_exact']:.5f}, {100 * (r['acceleration'] / r['acceleration_exact'] - 1):+.2f} %)")
+if "--refine" in sys.argv:  # near the sticking limit, printed only (measured -6.1 %), by hand
+    r = case("contact_0.5", "-interface_mu_top", "0.5", *STEPS)
+    print(f"info mu = 0.5 (near the sticking limit): a = {r['acceleration']:.5f} (exact "
+          f"{r['acceleration_exact']:.5f}, {100 * (r['acceleration'] / r['acceleration_exact'] - 1):+.2f} %)")
 c.done()

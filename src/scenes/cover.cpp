@@ -40,6 +40,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 constexpr int kMaxList = 16;
+constexpr int kMaxPlan = 64; // nodes along x and along z of the plan grid (-cover_plan_*)
 
 struct Layer { // bottom-up in Layer order inside the scene
   std::string name;
@@ -162,6 +163,9 @@ class CoverScene final : public Scene {
   // geometry (m)
   double W_ = 40, Hw_ = 10, grade_ = 0; // width, waste height, deck grade (%)
   double grade_z_ = 0; // -dim 3: the waste surface's grade along z (per cent, rising with z)
+  // -dim 3: the waste surface as heights on a plan grid (bilinear between its nodes), the plane's
+  // profile then the highest height at each x; empty: the profile, risen along z at grade_z_
+  std::vector<double> plan_x_, plan_z_, plan_h_;     // plan_h_[j * nx + i] at (x_i, z_j)
   double slope_deg_ = 0, slope_len_ = 0, toe_x_ = 0; // side slope
   std::vector<double> surf_;                         // waste surface polyline x,y,...
   std::vector<Layer> layers_;                        // bottom-up
@@ -219,14 +223,32 @@ class CoverScene final : public Scene {
     for (int j = 0; j < k; ++j) y += layers_[j].thickness(x, W_);
     return y;
   }
-  // -dim 3: the waste surface's height at (x, z): the plane's ys(x) risen at -cover_deck_grade_z
-  double ys3(const double X[3]) const { return ys(X[0]) + grade_z_ / 100.0 * X[2]; }
+  // -dim 3: the waste surface's height on the plan grid at (x, z), bilinear in its cell
+  double plan_height(double x, double z) const {
+    const size_t nx = plan_x_.size();
+    const auto cell = [](const std::vector<double> &g, double v, size_t *k) {
+      *k = 0;
+      while (*k + 2 < g.size() && v > g[*k + 1]) ++*k;
+      return std::fmin(1.0, std::fmax(0.0, (v - g[*k]) / (g[*k + 1] - g[*k])));
+    };
+    size_t i, j;
+    const double r = cell(plan_x_, x, &i), t = cell(plan_z_, z, &j);
+    const double *h0 = &plan_h_[j * nx], *h1 = &plan_h_[(j + 1) * nx];
+    return (1 - t) * ((1 - r) * h0[i] + r * h0[i + 1]) + t * ((1 - r) * h1[i] + r * h1[i + 1]);
+  }
+  // -dim 3: the waste surface's height at (x, z): the plan grid's, or the plane's ys(x) risen at
+  // -cover_deck_grade_z
+  double ys3(const double X[3]) const {
+    if (!plan_h_.empty()) return plan_height(X[0], X[2]);
+    return ys(X[0]) + grade_z_ / 100.0 * X[2];
+  }
   // -dim 3 (Scene::extruded_height): the plane's waste stretched to the surface at this z
   // (dy'/dy = ys3 / ys), what lies on it lifted with it
   double extruded_height(double x, double y, double z, double *stretch) const override {
     *stretch = 1;
-    if (grade_z_ == 0) return y;
-    const double lift = grade_z_ / 100.0 * z, s = ys(x);
+    if (grade_z_ == 0 && plan_h_.empty()) return y;
+    const double s = ys(x);
+    const double lift = plan_h_.empty() ? grade_z_ / 100.0 * z : plan_height(x, z) - s;
     if (y > s) return y + lift;
     *stretch = 1 + lift / s;
     return y + lift * (y / s); // y = s: the same height as the layers' (y + lift)
@@ -266,6 +288,11 @@ class CoverScene final : public Scene {
     double zx[2] = {0, 0}, gr[2] = {1, 1}, sc[2] = {0, 0};
     PetscInt nsc = 2;
     PetscBool sc_set = PETSC_FALSE;
+    // -dim 3: the plan grid of waste surface heights
+    PetscInt npx = kMaxPlan, npz = kMaxPlan, nph = kMaxPlan * kMaxPlan;
+    PetscBool px_set = PETSC_FALSE, pz_set = PETSC_FALSE, ph_set = PETSC_FALSE;
+    std::vector<double> px = std::vector<double>(kMaxPlan), pz = std::vector<double>(kMaxPlan),
+                        ph = std::vector<double>(kMaxPlan * kMaxPlan);
     char *lnames[kMaxList], *mnames[kMaxList], *znames[kMaxList], wbuf[64];
   };
   PetscErrorCode ReadCoverBlock(Simulation &sim, RawCoverOptions &raw) {
@@ -295,6 +322,20 @@ class CoverScene final : public Scene {
                                    "Waste surface as a polyline x0,y0,x1,y1,... (m, x "
                                    "increasing from 0 to W; overrides the deck and slope)",
                                    nullptr, raw.surf.data(), &raw.nsurf, &raw.surf_set));
+    PetscCall(PmpmOptionsRealArray(
+        "-plan_x",
+        "-dim 3: the plan grid's x nodes for -cover_plan_heights (m, increasing from 0 to W)",
+        nullptr, raw.px.data(), &raw.npx, &raw.px_set));
+    PetscCall(PmpmOptionsRealArray(
+        "-plan_z",
+        "-dim 3: the plan grid's z nodes for -cover_plan_heights (m, increasing from 0 to -depth)",
+        nullptr, raw.pz.data(), &raw.npz, &raw.pz_set));
+    PetscCall(PmpmOptionsRealArray(
+        "-plan_heights",
+        "-dim 3: the waste surface's height (m) at each plan node, row by row in z, x fastest "
+        "(bilinear between nodes; a surface of any shape in plan, in place of -cover_surface, "
+        "the deck and slope and -cover_deck_grade_z)",
+        nullptr, raw.ph.data(), &raw.nph, &raw.ph_set));
     PetscCall(PetscOptionsStringArray("-layers", "Cover layers from the top down (names)", nullptr,
                                       raw.lnames, &raw.nl, &raw.l_set));
     PetscCall(PetscOptionsString("-waste_material", "Material of the waste (-mat_<name>_*)",
@@ -377,6 +418,40 @@ class CoverScene final : public Scene {
     PetscFunctionReturn(0);
   }
 
+  // -dim 3: the plan grid of waste surface heights (the grid's extent is checked in Validate)
+  PetscErrorCode ReadPlan(Simulation &sim, const RawCoverOptions &raw) {
+    PetscFunctionBeginUser;
+    if (!raw.px_set && !raw.pz_set && !raw.ph_set) PetscFunctionReturn(0);
+    PmpmCheckInput(sim.set.dim == 3, sim.comm, PETSC_ERR_USER_INPUT,
+                   "-cover_plan_x, -cover_plan_z and -cover_plan_heights are for -dim 3 (in 2D "
+                   "the waste surface is -cover_surface)");
+    PmpmCheckInput(raw.px_set && raw.pz_set && raw.ph_set, sim.comm, PETSC_ERR_USER_INPUT,
+                   "-cover_plan_x, -cover_plan_z and -cover_plan_heights go together (the grid's "
+                   "nodes and a height at each)");
+    PmpmCheckInput(raw.npx >= 2 && raw.npz >= 2 && raw.nph == raw.npx * raw.npz, sim.comm,
+                   PETSC_ERR_USER_INPUT,
+                   "-cover_plan_heights needs a height at every plan node: %d x nodes "
+                   "(-cover_plan_x) times %d z nodes (-cover_plan_z) = %d values, at least 2 of "
+                   "each, got %d",
+                   (int)raw.npx, (int)raw.npz, (int)(raw.npx * raw.npz), (int)raw.nph);
+    // the plan grid is the whole surface: the plane's own surface options would be ignored
+    const char *plane[] = {"-cover_surface",      "-cover_waste_height", "-cover_deck_grade",
+                           "-cover_deck_grade_z", "-cover_slope_angle",  "-cover_slope_length",
+                           "-cover_toe_x"};
+    for (const char *o : plane) {
+      PetscBool given = PETSC_FALSE;
+      PetscCall(PetscOptionsHasName(nullptr, nullptr, o, &given));
+      PmpmCheckInput(!given, sim.comm, PETSC_ERR_USER_INPUT,
+                     "%s and -cover_plan_heights both give the waste surface: the plan grid is "
+                     "the whole surface, drop %s",
+                     o, o);
+    }
+    plan_x_.assign(raw.px.begin(), raw.px.begin() + raw.npx);
+    plan_z_.assign(raw.pz.begin(), raw.pz.begin() + raw.npz);
+    plan_h_.assign(raw.ph.begin(), raw.ph.begin() + raw.nph);
+    PetscFunctionReturn(0);
+  }
+
   PetscErrorCode ReadOptions(Simulation &sim) {
     std::vector<std::string> layer_names, mem_names, zone_names;
     RawCoverOptions raw;
@@ -393,6 +468,7 @@ class CoverScene final : public Scene {
                      (int)raw.nsurf);
       surf_.assign(raw.surf.begin(), raw.surf.begin() + raw.nsurf);
     }
+    PetscCall(ReadPlan(sim, raw));
     if (raw.zx_set) {
       PmpmCheckInput(raw.nz == 2 && raw.zx[1] > raw.zx[0], sim.comm, PETSC_ERR_USER_INPUT,
                      "-cover_shrink_x needs x_lo,x_hi with x_lo < x_hi");
@@ -568,12 +644,53 @@ class CoverScene final : public Scene {
   }
   std::vector<std::string> layer_mats_; // bottom-up, parallel to layers_
 
+  // -dim 3: the plan grid spans the box, its heights leave at least half of the waste at every
+  // node; the plane's profile (what is extruded) is then the highest height at each x node, so the
+  // waste is only ever compressed along y (extruded_height) and the box is the plane's
+  PetscErrorCode ValidatePlan(Simulation &sim) {
+    const size_t nx = plan_x_.size(), nz = plan_z_.size();
+    const double D = sim.set.depth;
+    PetscFunctionBeginUser;
+    const auto spans = [](const std::vector<double> &g, double L) {
+      bool ok = std::fabs(g.front()) < 1e-12 && std::fabs(g.back() - L) <= 1e-9 * L;
+      for (size_t k = 0; k + 1 < g.size(); ++k) ok = ok && g[k + 1] > g[k];
+      return ok;
+    };
+    PmpmCheckInput(spans(plan_x_, W_), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_plan_x must increase from 0 to -cover_width %g (got %g .. %g)", W_,
+                   plan_x_.front(), plan_x_.back());
+    PmpmCheckInput(spans(plan_z_, D), sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-cover_plan_z must increase from 0 to -depth %g (got %g .. %g)", D,
+                   plan_z_.front(), plan_z_.back());
+    surf_.clear();
+    for (size_t i = 0; i < nx; ++i) {
+      double lo = 1e300, hi = 0;
+      for (size_t j = 0; j < nz; ++j) {
+        const double y = plan_h_[j * nx + i];
+        PmpmCheckInput(y > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                       "-cover_plan_heights must be > 0 (node x = %g, z = %g: %g)", plan_x_[i],
+                       plan_z_[j], y);
+        lo = std::fmin(lo, y);
+        hi = std::fmax(hi, y);
+      }
+      PmpmCheckInput(lo >= 0.5 * hi, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+                     "-cover_plan_heights at x = %g range from %g to %g m along z: the lowest "
+                     "must be at least half the highest (the waste is generated at the highest "
+                     "and compressed along y to the surface)",
+                     plan_x_[i], lo, hi);
+      surf_.push_back(plan_x_[i]);
+      surf_.push_back(hi);
+    }
+    PetscFunctionReturn(0);
+  }
+
   PetscErrorCode Validate(Simulation &sim) {
     PetscFunctionBeginUser;
     PmpmCheckInput(W_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE, "-cover_width must be > 0 (got %g)",
                    W_);
     PmpmCheckInput(Hw_ > 0, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                    "-cover_waste_height must be > 0 (got %g)", Hw_);
+    if (!plan_h_.empty()) PetscCall(ValidatePlan(sim));
     if (surf_.empty()) {
       const double g = grade_ / 100.0;
       if (slope_len_ > 0) {
@@ -668,11 +785,12 @@ class CoverScene final : public Scene {
           void_x_, w, W_);
     }
     if (!void_w_.empty()) {
-      PmpmCheckInput(void_h_ > 0 && void_depth_ >= 0 && void_depth_ + void_h_ < ys(void_x_),
-                     sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
+      const double at[3] = {void_x_, 0, void_z_}, thick = dim3_ ? ys3(at) : ys(void_x_);
+      PmpmCheckInput(void_h_ > 0 && void_depth_ >= 0 && void_depth_ + void_h_ < thick, sim.comm,
+                     PETSC_ERR_ARG_OUTOFRANGE,
                      "-cover_void_height %g (> 0) and -cover_void_depth %g (>= 0) must fit in the "
                      "waste (%g m thick at the void)",
-                     void_h_, void_depth_, ys(void_x_));
+                     void_h_, void_depth_, thick);
       PmpmCheckInput(void_w_.front() >= 2 * dxp_, sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
                      "-cover_void_widths %g is less than two particle columns (%g m): refine "
                      "-cell_size",
