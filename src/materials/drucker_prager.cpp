@@ -58,11 +58,14 @@ PetscErrorCode DruckerPrager::Create(MPI_Comm comm, const std::string &prefix,
   PetscFunctionReturn(0);
 }
 
-void DruckerPrager::piola_tangent(const TangentPoint &pt, double *A) const {
-  const TangentKinematics k(pt);
-  const ReturnDerivative D =
-      drucker_prager_return_derivative(prm_, k_, trial_stress(prm_.el, k, pt), pt.eps_p);
-  plastic_piola_tangent(prm_.el, k, pt, D, A);
+template <int D> void DruckerPrager::tangent(const TangentPoint &pt, double *A) const {
+  const TangentKinematicsT<D> k(pt);
+  const ReturnDerivative R =
+      drucker_prager_return_derivative(prm_, k_, trial_stress<D>(prm_.el, k, pt), pt.eps_p);
+  plastic_piola_tangent<D>(prm_.el, k, pt, R, A);
 }
+
+template void DruckerPrager::tangent<2>(const TangentPoint &, double *) const;
+template void DruckerPrager::tangent<3>(const TangentPoint &, double *) const;
 
 } // namespace pmpm

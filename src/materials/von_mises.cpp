@@ -32,11 +32,14 @@ PetscErrorCode VonMises::Create(MPI_Comm comm, const std::string &prefix,
   PetscFunctionReturn(0);
 }
 
-void VonMises::piola_tangent(const TangentPoint &pt, double *A) const {
-  const TangentKinematics k(pt);
-  const ReturnDerivative D =
-      von_mises_return_derivative(prm_, trial_stress(prm_.el, k, pt), pt.eps_p);
-  plastic_piola_tangent(prm_.el, k, pt, D, A);
+template <int D> void VonMises::tangent(const TangentPoint &pt, double *A) const {
+  const TangentKinematicsT<D> k(pt);
+  const ReturnDerivative R =
+      von_mises_return_derivative(prm_, trial_stress<D>(prm_.el, k, pt), pt.eps_p);
+  plastic_piola_tangent<D>(prm_.el, k, pt, R, A);
 }
+
+template void VonMises::tangent<2>(const TangentPoint &, double *) const;
+template void VonMises::tangent<3>(const TangentPoint &, double *) const;
 
 } // namespace pmpm

@@ -33,32 +33,44 @@ void implicit_gradient(const ParticleView &P, const NodalView &U, const NodalVie
   }
 }
 
+template <int D>
 void implicit_deformation(PetscInt n, const double *G, const double *F, double *Fnew) {
+  using M = MatD<D>;
   for (PetscInt p = 0; p < n; ++p) {
-    const MatN f = MatN::Identity() + mat_of(G + p * DIM * DIM);
-    const MatN Fn = f * mat_of(F + p * DIM * DIM);
-    for (int a = 0; a < DIM; ++a)
-      for (int b = 0; b < DIM; ++b) Fnew[p * DIM * DIM + a * DIM + b] = Fn(a, b);
+    const M f = M::Identity() + mat_of<D>(G + p * D * D);
+    const M Fn = f * mat_of<D>(F + p * D * D);
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) Fnew[p * D * D + a * D + b] = Fn(a, b);
   }
 }
 
-void implicit_midpoint_gradient(PetscInt n, const double *G, double *Gm) {
+template <int D> void implicit_midpoint_gradient(PetscInt n, const double *G, double *Gm) {
+  using M = MatD<D>;
   for (PetscInt p = 0; p < n; ++p) {
-    const MatN g = mat_of(G + p * DIM * DIM);
-    const MatN gm = (MatN::Identity() + 0.5 * g).inverse() * g;
-    for (int a = 0; a < DIM; ++a)
-      for (int b = 0; b < DIM; ++b) Gm[p * DIM * DIM + a * DIM + b] = gm(a, b);
+    const M g = mat_of<D>(G + p * D * D);
+    const M gm = (M::Identity() + 0.5 * g).inverse() * g;
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) Gm[p * D * D + a * D + b] = gm(a, b);
   }
 }
 
+template <int D>
 void implicit_piola(PetscInt n, const double *G, const double *stress, double *Pk) {
+  using M = MatD<D>;
   for (PetscInt p = 0; p < n; ++p) {
-    const MatN f = MatN::Identity() + mat_of(G + p * DIM * DIM);
-    const MatN Pm = f.determinant() * in_plane(stress + p * NSTRESS) * f.inverse().transpose();
-    for (int a = 0; a < DIM; ++a)
-      for (int b = 0; b < DIM; ++b) Pk[p * DIM * DIM + a * DIM + b] = Pm(a, b);
+    const M f = M::Identity() + mat_of<D>(G + p * D * D);
+    const M Pm = f.determinant() * in_plane<D>(stress + p * NStress<D>) * f.inverse().transpose();
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) Pk[p * D * D + a * D + b] = Pm(a, b);
   }
 }
+
+template void implicit_deformation<2>(PetscInt, const double *, const double *, double *);
+template void implicit_deformation<3>(PetscInt, const double *, const double *, double *);
+template void implicit_midpoint_gradient<2>(PetscInt, const double *, double *);
+template void implicit_midpoint_gradient<3>(PetscInt, const double *, double *);
+template void implicit_piola<2>(PetscInt, const double *, const double *, double *);
+template void implicit_piola<3>(PetscInt, const double *, const double *, double *);
 
 template <class Shape>
 void implicit_internal_force(const ParticleView &P, const double *Pk, const NodalView &R) {

@@ -1,6 +1,7 @@
 // Unit tests of the implicit kernels (implicit_kernels.hpp) on plain arrays:
 //   piola_tangent: dP/dG against central differences of the material's own update followed by
-//   implicit_piola, at random G (|G| up to 0.1), committed stress and F, for linear elastic
+//   implicit_piola, in 2D (plane strain) and 3D (piola_tangent3: G and F 3 x 3, the six
+//   stresses), at random G (|G| up to 0.1), committed stress and F, for linear elastic
 //   (Jaumann rate) and neo-Hookean: the consistent tangent of the residual Newton solves;
 //   the same for von Mises (elastic, perfectly plastic, hardening, softening) and Drucker-Prager
 //   (elastic, cone associated and not, with and without hardening, apex with hardening or
@@ -25,15 +26,19 @@ using namespace pmpm;
 namespace {
 
 // P(G) of one particle by the material's update on copies and implicit_piola.
+// D = 2 (plane strain) or 3.
+template <int D>
 void piola_of(const Material &m, const double *G, const double *s_old, const double *Fn, double *P,
               double *s_new, double ep = 0) {
-  double s[NSTRESS], F[4];
-  for (int k = 0; k < NSTRESS; ++k) s[k] = s_old[k];
-  implicit_deformation(1, G, Fn, F);
-  double Gmid[4]; // the rate-form update reads the midpoint gradient, as newton.cpp passes it
-  implicit_midpoint_gradient(1, G, Gmid);
+  constexpr int NS = NStress<D>;
+  double s[NS], F[D * D];
+  for (int k = 0; k < NS; ++k) s[k] = s_old[k];
+  implicit_deformation<D>(1, G, Fn, F);
+  double Gmid[D * D]; // the rate-form update reads the midpoint gradient, as newton.cpp passes it
+  implicit_midpoint_gradient<D>(1, G, Gmid);
   const int idx = 0;
   StressBatch b;
+  b.dim = D;
   b.n = 1;
   b.idx = &idx;
   b.dudx = Gmid;
@@ -41,40 +46,47 @@ void piola_of(const Material &m, const double *G, const double *s_old, const dou
   b.stress = s;
   b.eps_p = &ep;
   m.update_stress(b);
-  implicit_piola(1, G, s, P);
+  implicit_piola<D>(1, G, s, P);
   if (s_new)
-    for (int k = 0; k < NSTRESS; ++k) s_new[k] = s[k];
+    for (int k = 0; k < NS; ++k) s_new[k] = s[k];
 }
 
-void test_tangent(bool neo_hookean) {
+// The identity in D x D, row-major.
+template <int D> void identity(double *F) {
+  for (int k = 0; k < D * D; ++k) F[k] = k % (D + 1) == 0 ? 1.0 : 0.0;
+}
+
+template <int D> void test_tangent(bool neo_hookean) {
+  constexpr int NS = NStress<D>, DD = D * D;
   const ElasticConstants el{1.0, 0.3}; // E = 1: stresses and tangents of order 1
   LinearElastic lin(el);
   NeoHookean neo(el);
   const Material &m = neo_hookean ? static_cast<const Material &>(neo) : lin;
   pmpm_test::Lcg rng(neo_hookean ? 7 : 3);
   for (int trial = 0; trial < 20; ++trial) {
-    double G[4], Fn[4] = {1, 0, 0, 1}, s_old[NSTRESS], s_new[NSTRESS], P[4], A[16];
+    double G[DD], Fn[DD], s_old[NS], s_new[NS], P[DD], A[DD * DD];
+    identity<D>(Fn);
     for (double &g : G) g = 0.2 * (rng.next() - 0.5);
     for (double &f : Fn) f += 0.2 * (rng.next() - 0.5);
     if (neo_hookean) { // the committed stress is the one of Fn
-      const Mat3 s = neo_hookean_stress(el, Fn);
-      tensor_to_stress(s, s_old);
+      const Mat3 s = neo_hookean_stress<D>(el, Fn);
+      tensor_to_stress<D>(s, s_old);
     } else {
       for (double &s : s_old) s = 0.02 * (rng.next() - 0.5);
     }
-    piola_of(m, G, s_old, Fn, P, s_new);
-    piola_tangent(m, G, s_old, s_new, Fn, 0.0, A);
+    piola_of<D>(m, G, s_old, Fn, P, s_new);
+    piola_tangent<D>(m, G, s_old, s_new, Fn, 0.0, A);
     // central differences: truncation eps^2 |P'''| ~ 1e-12, round-off 1e-16 / eps ~ 1e-10 for
     // P and A of order 1; 1e-7 leaves a margin of 1000 and catches any missing term (>= 1e-3)
     const double eps = 1e-6;
-    for (int q = 0; q < 4; ++q) {
-      double Gp[4], Gm[4], Pp[4], Pm[4];
-      for (int k = 0; k < 4; ++k) Gp[k] = Gm[k] = G[k];
+    for (int q = 0; q < DD; ++q) {
+      double Gp[DD], Gm[DD], Pp[DD], Pm[DD];
+      for (int k = 0; k < DD; ++k) Gp[k] = Gm[k] = G[k];
       Gp[q] += eps;
       Gm[q] -= eps;
-      piola_of(m, Gp, s_old, Fn, Pp, nullptr);
-      piola_of(m, Gm, s_old, Fn, Pm, nullptr);
-      for (int r = 0; r < 4; ++r) CHECK_CLOSE(A[r * 4 + q], (Pp[r] - Pm[r]) / (2 * eps), 1e-7);
+      piola_of<D>(m, Gp, s_old, Fn, Pp, nullptr);
+      piola_of<D>(m, Gm, s_old, Fn, Pm, nullptr);
+      for (int r = 0; r < DD; ++r) CHECK_CLOSE(A[r * DD + q], (Pp[r] - Pm[r]) / (2 * eps), 1e-7);
     }
   }
 }
@@ -87,12 +99,13 @@ ReturnResult return_of(const VonMises &m, Mat3 &s, double ep) {
 ReturnResult return_of(const DruckerPrager &m, Mat3 &s, double ep) {
   return drucker_prager_return(m.params(), m.coefficients(), s, ep);
 }
-template <class Law> int branch_of(const Law &m, const double *G, const double *s_old, double ep) {
+template <int D, class Law>
+int branch_of(const Law &m, const double *G, const double *s_old, double ep) {
   Mat3 de, dw;
-  double Gmid[4];
-  implicit_midpoint_gradient(1, G, Gmid);
-  strain_and_spin(Gmid, de, dw);
-  Mat3 s = jaumann_rotate(stress_to_tensor(s_old), dw) + elastic_increment(m.params().el, de);
+  double Gmid[D * D];
+  implicit_midpoint_gradient<D>(1, G, Gmid);
+  strain_and_spin<D>(Gmid, de, dw);
+  Mat3 s = jaumann_rotate(stress_to_tensor<D>(s_old), dw) + elastic_increment(m.params().el, de);
   const ReturnResult r = return_of(m, s, ep);
   if (!r.yielded) return 0;
   if (r.apex) return r.tension ? 5 : 4;
@@ -103,58 +116,61 @@ template <class Law> int branch_of(const Law &m, const double *G, const double *
 // One plastic case: random G (|G_ij| <= g), committed stress s0 + random (+- ds), committed
 // eps_p in [0, 0.02]; trials at the wanted branch are checked until `want` of them passed the
 // branch test at G +- eps (at most 5000 draws); at least `want` must be checked.
-template <class Law>
+template <int D, class Law>
 void test_plastic_case(const char *what, const Law &m, int branch, double g, const double *s0,
                        double ds, unsigned seed, int want = 20) {
+  constexpr int NS = NStress<D>, DD = D * D;
   pmpm_test::Lcg rng(seed);
   int checked = 0, skipped = 0;
   double worst = 0;
   for (int draw = 0; draw < 5000 && checked < want; ++draw) {
-    double G[4], Fn[4] = {1, 0, 0, 1}, s_old[NSTRESS], s_new[NSTRESS], P[4], A[16];
+    double G[DD], Fn[DD], s_old[NS], s_new[NS], P[DD], A[DD * DD];
+    identity<D>(Fn);
     for (double &x : G) x = g * (2 * rng.next() - 1);
     for (double &f : Fn) f += 0.1 * (rng.next() - 0.5);
-    for (int k = 0; k < NSTRESS; ++k) s_old[k] = s0[k] + ds * (2 * rng.next() - 1);
+    for (int k = 0; k < NS; ++k) s_old[k] = s0[k] + ds * (2 * rng.next() - 1);
     const double ep = 0.02 * rng.next();
-    if (branch_of(m, G, s_old, ep) != branch) continue;
+    if (branch_of<D>(m, G, s_old, ep) != branch) continue;
     // central differences: the return's third derivatives scale as 1 / q_tr^2 (q_tr >= 1e-3
     // here), eps^2 / q_tr^2 <= 1e-8 of the tangent; round-off 1e-16 |P| / eps ~ 1e-10
     const double eps = 1e-7;
     bool same = true;
-    double Afd[16];
-    for (int q = 0; q < 4 && same; ++q) {
-      double Gp[4], Gm[4], Pp[4], Pm[4];
-      for (int k = 0; k < 4; ++k) Gp[k] = Gm[k] = G[k];
+    double Afd[DD * DD];
+    for (int q = 0; q < DD && same; ++q) {
+      double Gp[DD], Gm[DD], Pp[DD], Pm[DD];
+      for (int k = 0; k < DD; ++k) Gp[k] = Gm[k] = G[k];
       Gp[q] += eps;
       Gm[q] -= eps;
-      same = branch_of(m, Gp, s_old, ep) == branch && branch_of(m, Gm, s_old, ep) == branch;
-      piola_of(m, Gp, s_old, Fn, Pp, nullptr, ep);
-      piola_of(m, Gm, s_old, Fn, Pm, nullptr, ep);
-      for (int r = 0; r < 4; ++r) Afd[r * 4 + q] = (Pp[r] - Pm[r]) / (2 * eps);
+      same = branch_of<D>(m, Gp, s_old, ep) == branch && branch_of<D>(m, Gm, s_old, ep) == branch;
+      piola_of<D>(m, Gp, s_old, Fn, Pp, nullptr, ep);
+      piola_of<D>(m, Gm, s_old, Fn, Pm, nullptr, ep);
+      for (int r = 0; r < DD; ++r) Afd[r * DD + q] = (Pp[r] - Pm[r]) / (2 * eps);
     }
     if (!same) {
       ++skipped;
       continue;
     }
-    piola_of(m, G, s_old, Fn, P, s_new, ep);
-    piola_tangent(m, G, s_old, s_new, Fn, ep, A);
+    piola_of<D>(m, G, s_old, Fn, P, s_new, ep);
+    piola_tangent<D>(m, G, s_old, s_new, Fn, ep, A);
     double scale = 0;
     for (double a : Afd) scale = std::fmax(scale, std::fabs(a));
-    for (int k = 0; k < 16; ++k) {
+    for (int k = 0; k < DD * DD; ++k) {
       CHECK_CLOSE(A[k], Afd[k], 1e-6 * scale);
       worst = std::fmax(worst, std::fabs(A[k] - Afd[k]) / scale);
     }
     ++checked;
   }
   CHECK(checked >= want);
-  std::printf("  %-44s branch %d: %2d states, %d skipped at a branch edge, worst %.1e\n", what,
-              branch, checked, skipped, worst);
+  std::printf("  %dD %-44s branch %d: %2d states, %d skipped at a branch edge, worst %.1e\n", D,
+              what, branch, checked, skipped, worst);
 }
 
-void test_plastic_tangents() {
+template <int D> void test_plastic_tangents() {
+  constexpr int NS = NStress<D>;
   const double INF = std::numeric_limits<double>::infinity();
   const ElasticConstants el{1.0, 0.3}; // E = 1, G = 0.385, K = 0.833
   // von Mises: the trial deviator of |G| <= 0.05 reaches q_tr ~ 0.03-0.1
-  const double zero[NSTRESS] = {0, 0, 0, 0};
+  const double zero[NS] = {};
   struct VmCase {
     const char *what;
     double sy, H;
@@ -170,12 +186,12 @@ void test_plastic_tangents() {
     prm.sigma_y0 = c.sy;
     prm.hardening = c.H;
     VonMises m(prm);
-    test_plastic_case(c.what, m, c.branch, 0.05, zero, 0.01, seed++);
+    test_plastic_case<D>(c.what, m, c.branch, 0.05, zero, 0.01, seed++);
   }
   // Drucker-Prager around a committed compressive state p = -0.05 (cone, elastic), or a
   // tensile trial (apex, cut-off, corner)
-  const double comp[NSTRESS] = {-0.05, -0.05, -0.05, 0};
-  const double tens[NSTRESS] = {0.02, 0.02, 0.02, 0};
+  const double comp[NS] = {-0.05, -0.05, -0.05}; // shear components zero
+  const double tens[NS] = {0.02, 0.02, 0.02};
   struct DpCase {
     const char *what;
     double c, phi, psi, H, t;
@@ -205,7 +221,7 @@ void test_plastic_tangents() {
     prm.tension_cutoff = c.t;
     prm.match = c.match;
     DruckerPrager m(prm);
-    test_plastic_case(c.what, m, c.branch, c.g, c.s0, 0.01, seed++);
+    test_plastic_case<D>(c.what, m, c.branch, c.g, c.s0, 0.01, seed++);
   }
 }
 
@@ -262,9 +278,12 @@ template <class Shape> void test_completeness() {
 } // namespace
 
 int main() {
-  test_tangent(false); // linear elastic
-  test_tangent(true);  // neo-Hookean
-  test_plastic_tangents();
+  test_tangent<2>(false); // linear elastic
+  test_tangent<2>(true);  // neo-Hookean
+  test_plastic_tangents<2>();
+  test_tangent<3>(false); // the same in 3D (piola_tangent3)
+  test_tangent<3>(true);
+  test_plastic_tangents<3>();
   test_completeness<LinearShape>();
   test_completeness<UGIMPShape>();
   return pmpm_test::report("implicit");

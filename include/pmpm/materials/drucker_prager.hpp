@@ -228,7 +228,8 @@ public:
   explicit DruckerPrager(const DruckerPragerParams &prm) : prm_(prm), k_(dp_coefficients(prm)) {}
   const char *model() const override { return kName; }
   bool has_tangent() const override { return true; }
-  void piola_tangent(const TangentPoint &pt, double *A) const override;
+  void piola_tangent(const TangentPoint &pt, double *A) const override { tangent<DIM>(pt, A); }
+  void piola_tangent3(const TangentPoint &pt, double *A) const override { tangent<3>(pt, A); }
   double wave_modulus() const override { return prm_.el.M(); }
   bool rate_form() const override { return kRateForm; }
   bool plastic() const override { return kPlastic; }
@@ -241,6 +242,8 @@ public:
   }
 
 private:
+  // the consistent tangent in D dimensions (piola_tangent, piola_tangent3)
+  template <int D> void tangent(const TangentPoint &pt, double *A) const;
   DruckerPragerParams prm_;
   DPCoefficients k_;
 };

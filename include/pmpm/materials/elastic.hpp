@@ -57,7 +57,8 @@ public:
   bool rate_form() const override { return kRateForm; }
   bool plastic() const override { return kPlastic; }
   bool has_tangent() const override { return true; }
-  void piola_tangent(const TangentPoint &pt, double *A) const override;
+  void piola_tangent(const TangentPoint &pt, double *A) const override { tangent<DIM>(pt, A); }
+  void piola_tangent3(const TangentPoint &pt, double *A) const override { tangent<3>(pt, A); }
   double wave_modulus() const override { return c_.M(); }
   bool linear_elastic_rate(double &lam, double &G2) const override {
     lam = c_.lambda();
@@ -74,6 +75,8 @@ public:
   }
 
 private:
+  // the consistent tangent in D dimensions (piola_tangent, piola_tangent3)
+  template <int D> void tangent(const TangentPoint &pt, double *A) const;
   template <bool Hoop> void update(const StressBatch &b) const {
     const double lam = c_.lambda(), G2 = 2.0 * c_.G();
     for (int k = 0; k < b.n; ++k) {
@@ -131,7 +134,8 @@ public:
   explicit NeoHookean(const ElasticConstants &c) : c_(c) {}
   const char *model() const override { return kName; }
   bool has_tangent() const override { return true; }
-  void piola_tangent(const TangentPoint &pt, double *A) const override;
+  void piola_tangent(const TangentPoint &pt, double *A) const override { tangent<DIM>(pt, A); }
+  void piola_tangent3(const TangentPoint &pt, double *A) const override { tangent<3>(pt, A); }
   double wave_modulus() const override { return c_.M(); }
   bool rate_form() const override { return kRateForm; }
   bool plastic() const override { return kPlastic; }
@@ -156,6 +160,8 @@ public:
   }
 
 private:
+  // the consistent tangent in D dimensions (piola_tangent, piola_tangent3)
+  template <int D> void tangent(const TangentPoint &pt, double *A) const;
   ElasticConstants c_;
 };
 

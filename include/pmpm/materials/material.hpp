@@ -89,6 +89,8 @@ public:
   // dP_aj / dG_bl) of one particle at pt, P = J sigma' f^-T (implicit_kernels.hpp): exact for this
   // model's update_stress as -solver newton calls it. Called only when has_tangent().
   virtual void piola_tangent(const TangentPoint & /*pt*/, double * /*A*/) const {}
+  // The same in 3D (G and F 3 x 3, the stresses xx yy zz xy yz xz, A 9 x 9).
+  virtual void piola_tangent3(const TangentPoint & /*pt*/, double * /*A*/) const {}
 };
 
 // Small-strain increment and spin from L*dt (D x D, row-major; 3x3, in 2D zz rows/cols zero).

@@ -1,5 +1,6 @@
 // What the material laws' consistent tangents (Material::piola_tangent) share: the step's
-// kinematics at one particle and the loop over the DIM^2 unit directions dG = e_b (x) e_l.
+// kinematics at one particle and the loop over the D^2 unit directions dG = e_b (x) e_l, in 2D
+// (plane strain, D = 2) and 3D (D = 3).
 //
 // With f = I + G, J = det f, dJ = J tr(f^-1 dG), d(f^-T) = -f^-T dG^T f^-T, each law gives the
 // directional derivative dP[dG] of P = J sigma' f^-T:
@@ -20,64 +21,71 @@
 
 namespace pmpm {
 
-inline MatN mat_of(const double *a) {
-  MatN m;
-  m << a[0], a[1], a[2], a[3];
+// A D x D matrix (Eigen, fixed size): MatN in 2D, Mat3 in 3D.
+template <int D> using MatD = Eigen::Matrix<double, D, D>;
+
+template <int D = DIM> inline MatD<D> mat_of(const double *a) { // row-major D x D
+  MatD<D> m;
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) m(i, j) = a[i * D + j];
   return m;
 }
-inline MatN in_plane(const double *s) { // Cauchy stress xx yy zz xy -> in-plane 2x2
-  MatN m;
-  m << s[0], s[3], s[3], s[1];
-  return m;
+// The Cauchy stress's D x D block: in 2D (xx yy zz xy) the in-plane 2x2 (zz does not enter P),
+// in 3D (xx yy zz xy yz xz) the whole tensor.
+template <int D = DIM> inline MatD<D> in_plane(const double *s) {
+  return stress_to_tensor<D>(s).template topLeftCorner<D, D>();
 }
 
-// One particle's kinematics at a TangentPoint.
-struct TangentKinematics {
-  MatN I, f, fi, fiT;   // f = I + G, its inverse and inverse transpose
-  MatN Hi;              // (I + G/2)^-1: dGm = Hi dG Hi
-  double gm[DIM * DIM]; // the midpoint gradient Gm = Hi G, row-major
-  double J;             // det f
-  MatN sn, so;          // in-plane s_new and s_old
-  explicit TangentKinematics(const TangentPoint &pt) {
-    I = MatN::Identity();
-    f = I + mat_of(pt.G);
+// One particle's kinematics at a TangentPoint (G, F: D x D row-major; stresses NStress<D>).
+template <int D> struct TangentKinematicsT {
+  using M = MatD<D>;
+  M I, f, fi, fiT;  // f = I + G, its inverse and inverse transpose
+  M Hi;             // (I + G/2)^-1: dGm = Hi dG Hi
+  double gm[D * D]; // the midpoint gradient Gm = Hi G, row-major
+  double J;         // det f
+  M sn, so;         // the stresses' D x D blocks: s_new and s_old
+  explicit TangentKinematicsT(const TangentPoint &pt) {
+    I = M::Identity();
+    f = I + mat_of<D>(pt.G);
     fi = f.inverse();
     fiT = fi.transpose();
-    Hi = (I + 0.5 * mat_of(pt.G)).inverse();
-    const MatN Gm = Hi * mat_of(pt.G);
-    gm[0] = Gm(0, 0);
-    gm[1] = Gm(0, 1);
-    gm[2] = Gm(1, 0);
-    gm[3] = Gm(1, 1);
+    Hi = (I + 0.5 * mat_of<D>(pt.G)).inverse();
+    const M Gm = Hi * mat_of<D>(pt.G);
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) gm[i * D + j] = Gm(i, j);
     J = f.determinant();
-    sn = in_plane(pt.s_new);
-    so = in_plane(pt.s_old);
+    sn = in_plane<D>(pt.s_new);
+    so = in_plane<D>(pt.s_old);
   }
   // tr(f^-1 dG): the relative volume change dJ / J along dG
-  double dtr(const MatN &dG) const { return (fi * dG).trace(); }
+  double dtr(const M &dG) const { return (fi * dG).trace(); }
   // the rate-form laws' dP given the stress derivative ds along dG (above)
-  MatN rate_form_dP(const MatN &dG, const MatN &ds) const {
+  M rate_form_dP(const M &dG, const M &ds) const {
     return J * (dtr(dG) * sn + ds - sn * fiT * dG.transpose()) * fiT;
   }
 };
+using TangentKinematics = TangentKinematicsT<DIM>;
 
-// A[(a DIM + j) DIM^2 + (b DIM + l)] = dP(e_b (x) e_l)_aj, dP(dG) a law's directional derivative.
-template <class DP> inline void piola_directions(DP &&dP, double *A) {
-  for (int b = 0; b < DIM; ++b)
-    for (int l = 0; l < DIM; ++l) {
-      MatN dG = MatN::Zero();
+// A[(a D + j) D^2 + (b D + l)] = dP(e_b (x) e_l)_aj, dP(dG) a law's directional derivative.
+template <int D = DIM, class DP> inline void piola_directions(DP &&dP, double *A) {
+  for (int b = 0; b < D; ++b)
+    for (int l = 0; l < D; ++l) {
+      MatD<D> dG = MatD<D>::Zero();
       dG(b, l) = 1.0;
-      const MatN d = dP(dG);
-      for (int a = 0; a < DIM; ++a)
-        for (int j = 0; j < DIM; ++j) A[(a * DIM + j) * DIM * DIM + (b * DIM + l)] = d(a, j);
+      const MatD<D> d = dP(dG);
+      for (int a = 0; a < D; ++a)
+        for (int j = 0; j < D; ++j) A[(a * D + j) * D * D + (b * D + l)] = d(a, j);
     }
 }
 
 // The rate-form plastic laws (von Mises, Drucker-Prager): the trial stress exactly as
 // predictor_corrector forms it at the point (Jaumann-rotated s_old + C : (sym(Gm) - e*)).
-Mat3 trial_stress(const ElasticConstants &el, const TangentKinematics &k, const TangentPoint &pt);
-// Their tangent, D the return's derivative at trial_stress (above).
-void plastic_piola_tangent(const ElasticConstants &el, const TangentKinematics &k,
-                           const TangentPoint &pt, const ReturnDerivative &D, double *A);
+template <int D>
+Mat3 trial_stress(const ElasticConstants &el, const TangentKinematicsT<D> &k,
+                  const TangentPoint &pt);
+// Their tangent, R the return's derivative at trial_stress (above).
+template <int D>
+void plastic_piola_tangent(const ElasticConstants &el, const TangentKinematicsT<D> &k,
+                           const TangentPoint &pt, const ReturnDerivative &R, double *A);
 
 } // namespace pmpm

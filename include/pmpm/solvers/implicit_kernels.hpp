@@ -40,14 +40,18 @@ template <class Shape>
 void implicit_gradient(const ParticleView &P, const NodalView &U, const NodalView &mask, double *G,
                        double *up = nullptr);
 
-// Trial kinematics for the material batch: F_new = (I + G) F^n per particle.
+// Trial kinematics for the material batch: F_new = (I + G) F^n per particle. These three work
+// per particle in D = 2 or 3 dimensions (G, F, P: D x D row-major; stresses NStress<D>).
+template <int D = DIM>
 void implicit_deformation(PetscInt n, const double *G, const double *F, double *Fnew);
 
 // The midpoint increment gradient Gm = (I + G/2)^-1 G = G (I + G/2)^-1 per particle: the gradient
 // of du with respect to the step's midpoint configuration x^n + du/2 (Hughes and Winget 1980).
-void implicit_midpoint_gradient(PetscInt n, const double *G, double *Gm);
+template <int D = DIM> void implicit_midpoint_gradient(PetscInt n, const double *G, double *Gm);
 
-// P = J sigma' f^-T (in-plane DIM x DIM, row-major) from G and the trial Cauchy stress.
+// P = J sigma' f^-T (D x D, row-major; in 2D the in-plane block) from G and the trial Cauchy
+// stress.
+template <int D = DIM>
 void implicit_piola(PetscInt n, const double *G, const double *stress, double *Pk);
 
 // R_i += V_p^n P_p grad S_i(x_p) (into the ghosted view; sum the ghosts across ranks after).
@@ -82,13 +86,15 @@ void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], doub
                               const double *G, const double *stress, double weight,
                               const double gw[DIM], double *K);
 
-// A = dP / dG (DIM^2 x DIM^2, A[(a DIM + j) DIM^2 + (b DIM + l)] = dP_aj / dG_bl) of one particle,
-// exact for its material's update: the law's own tangent (Material::piola_tangent; the laws'
+// A = dP / dG (D^2 x D^2, A[(a D + j) D^2 + (b D + l)] = dP_aj / dG_bl) of one particle in D = 2
+// or 3 dimensions, exact for its material's update: the law's own tangent
+// (Material::piola_tangent, piola_tangent3 in 3D; the laws'
 // formulas in materials/tangent.hpp). s_old: committed stress; s_new: the stress at G (after the
 // update); Fn: committed F; eps_p: committed equivalent plastic strain (plastic models only).
 // eigen (3 values xx yy zz, or null): the step's eigenstrain increment (degradation.hpp), which
 // the rate-form update subtracts from sym(G): a stress-free strain, so it moves the plastic
 // models' trial stress (and so their return) but adds no term of its own.
+template <int D = DIM>
 inline void piola_tangent(const Material &m, const double *G, const double *s_old,
                           const double *s_new, const double *Fn, double eps_p, double *A,
                           const double *eigen = nullptr) {
@@ -99,7 +105,10 @@ inline void piola_tangent(const Material &m, const double *G, const double *s_ol
   pt.Fn = Fn;
   pt.eps_p = eps_p;
   pt.eigen = eigen;
-  m.piola_tangent(pt, A);
+  if constexpr (D == 3)
+    m.piola_tangent3(pt, A);
+  else
+    m.piola_tangent(pt, A);
 }
 
 // One particle's stiffness over its support: the NN nodes of weights() (node k at base +
