@@ -11,25 +11,24 @@ inline MatN current_stress_volume(double V, const double *G, const double *stres
 }
 } // namespace
 
-template <class Shape>
-void implicit_gradient(const ParticleView &P, const NodalView &U, const NodalView &mask, double *G,
-                       double *up) {
-  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
-  Weights<Shape> W;
+template <class Shape, int D>
+void implicit_gradient(const ParticleView &P, const NodalViewT<D> &U, const NodalViewT<D> &mask,
+                       double *G, double *up) {
+  constexpr int NN = Weights<Shape, D>::NN;
+  Weights<Shape, D> W;
   for (PetscInt p = 0; p < P.n; ++p) {
-    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, U.origin, U.h, W);
-    double g[DIM * DIM] = {0, 0, 0, 0}, v[DIM] = {0, 0};
+    weights<Shape, D>(P.x + p * D, P.lp + p * D, U.origin, U.h, W);
+    double g[D * D] = {}, v[D] = {};
     for (int k = 0; k < NN; ++k) {
-      const PetscInt i = W.base[0] + k % NS, j = W.base[1] + k / NS;
-      const double *u = U.node(i, j), *m = mask.node(i, j);
-      for (int a = 0; a < DIM; ++a) {
+      const double *u = U.node(W, k), *m = mask.node(W, k);
+      for (int a = 0; a < D; ++a) {
         v[a] += W.w[k] * m[a] * u[a];
-        for (int d = 0; d < DIM; ++d) g[a * DIM + d] += m[a] * u[a] * W.grad[k][d];
+        for (int d = 0; d < D; ++d) g[a * D + d] += m[a] * u[a] * W.grad[k][d];
       }
     }
-    for (int q = 0; q < DIM * DIM; ++q) G[p * DIM * DIM + q] = g[q];
+    for (int q = 0; q < D * D; ++q) G[p * D * D + q] = g[q];
     if (up)
-      for (int a = 0; a < DIM; ++a) up[p * DIM + a] = v[a];
+      for (int a = 0; a < D; ++a) up[p * D + a] = v[a];
   }
 }
 
@@ -72,17 +71,17 @@ template void implicit_midpoint_gradient<3>(PetscInt, const double *, double *);
 template void implicit_piola<2>(PetscInt, const double *, const double *, double *);
 template void implicit_piola<3>(PetscInt, const double *, const double *, double *);
 
-template <class Shape>
-void implicit_internal_force(const ParticleView &P, const double *Pk, const NodalView &R) {
-  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
-  Weights<Shape> W;
+template <class Shape, int D>
+void implicit_internal_force(const ParticleView &P, const double *Pk, const NodalViewT<D> &R) {
+  constexpr int NN = Weights<Shape, D>::NN;
+  Weights<Shape, D> W;
   for (PetscInt p = 0; p < P.n; ++p) {
-    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, R.origin, R.h, W);
-    const double V = P.vol[p], *Pm = Pk + p * DIM * DIM;
+    weights<Shape, D>(P.x + p * D, P.lp + p * D, R.origin, R.h, W);
+    const double V = P.vol[p], *Pm = Pk + p * D * D;
     for (int k = 0; k < NN; ++k) {
-      double *r = R.node(W.base[0] + k % NS, W.base[1] + k / NS);
-      for (int a = 0; a < DIM; ++a)
-        for (int d = 0; d < DIM; ++d) r[a] += V * Pm[a * DIM + d] * W.grad[k][d];
+      double *r = R.node(W, k);
+      for (int a = 0; a < D; ++a)
+        for (int d = 0; d < D; ++d) r[a] += V * Pm[a * D + d] * W.grad[k][d];
     }
   }
 }
@@ -145,49 +144,60 @@ void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], doub
   }
 }
 
-template <class Shape>
-void particle_stiffness(const Weights<Shape> &W, double V, const double *A, double *K) {
-  constexpr int NN = Weights<Shape>::NN, ND = NN * DIM;
+template <class Shape, int D>
+void particle_stiffness(const Weights<Shape, D> &W, double V, const double *A, double *K) {
+  constexpr int NN = Weights<Shape, D>::NN, ND = NN * D;
   for (int k = 0; k < NN; ++k)
-    for (int a = 0; a < DIM; ++a)
+    for (int a = 0; a < D; ++a)
       for (int m = 0; m < NN; ++m)
-        for (int b = 0; b < DIM; ++b) {
+        for (int b = 0; b < D; ++b) {
           double s = 0;
-          for (int j = 0; j < DIM; ++j)
-            for (int l = 0; l < DIM; ++l)
-              s += W.grad[k][j] * A[(a * DIM + j) * DIM * DIM + (b * DIM + l)] * W.grad[m][l];
-          K[(k * DIM + a) * ND + (m * DIM + b)] = V * s;
+          for (int j = 0; j < D; ++j)
+            for (int l = 0; l < D; ++l)
+              s += W.grad[k][j] * A[(a * D + j) * D * D + (b * D + l)] * W.grad[m][l];
+          K[(k * D + a) * ND + (m * D + b)] = V * s;
         }
 }
 
-template <class Shape>
-void add_particle_blocks(const Weights<Shape> &W, const double *K, const NodeBlocks &B) {
-  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS, ND = NN * DIM;
+template <class Shape, int D>
+void add_particle_blocks(const Weights<Shape, D> &W, const double *K, const NodeBlocksT<D> &B) {
+  constexpr int NN = Weights<Shape, D>::NN, NS = Shape::NS, ND = NN * D;
   for (int k = 0; k < NN; ++k) {
-    const PetscInt i = W.base[0] + k % NS, j = W.base[1] + k / NS;
     for (int m = 0; m < NN; ++m) {
-      double *b = B.block(i, j, m % NS - k % NS, m / NS - k / NS);
-      for (int a = 0; a < DIM; ++a)
-        for (int c = 0; c < DIM; ++c) b[a * DIM + c] += K[(k * DIM + a) * ND + (m * DIM + c)];
+      double *b;
+      if constexpr (D == 2) {
+        b = B.block(W.base[0] + k % NS, W.base[1] + k / NS, m % NS - k % NS, m / NS - k / NS);
+      } else {
+        const int ki = k % NS, kj = (k / NS) % NS, kk = k / (NS * NS);
+        const int mi = m % NS, mj = (m / NS) % NS, mk = m / (NS * NS);
+        b = B.block(W.base[0] + ki, W.base[1] + kj, W.base[2] + kk, mi - ki, mj - kj, mk - kk);
+      }
+      for (int a = 0; a < D; ++a)
+        for (int c = 0; c < D; ++c) b[a * D + c] += K[(k * D + a) * ND + (m * D + c)];
     }
   }
 }
 
+#define PMPM_INSTANTIATE_D(S, D)                                                                   \
+  template void implicit_gradient<S, D>(const ParticleView &, const NodalViewT<D> &,               \
+                                        const NodalViewT<D> &, double *, double *);                \
+  template void implicit_internal_force<S, D>(const ParticleView &, const double *,                \
+                                              const NodalViewT<D> &);                              \
+  template void particle_stiffness<S, D>(const Weights<S, D> &, double, const double *, double *); \
+  template void add_particle_blocks<S, D>(const Weights<S, D> &, const double *,                   \
+                                          const NodeBlocksT<D> &);
 #define PMPM_INSTANTIATE(S)                                                                        \
-  template void implicit_gradient<S>(const ParticleView &, const NodalView &, const NodalView &,   \
-                                     double *, double *);                                          \
-  template void implicit_internal_force<S>(const ParticleView &, const double *,                   \
-                                           const NodalView &);                                     \
+  PMPM_INSTANTIATE_D(S, 2)                                                                         \
+  PMPM_INSTANTIATE_D(S, 3)                                                                         \
   template int reset_internal_force<S>(const ParticleView &, const double *, const double *,       \
                                        const double *, const double *, const double *,             \
                                        const NodalView &);                                         \
   template void particle_reset_stiffness<S>(const Weights<S> &, const double[][3], double,         \
                                             const double *, const double *, double,                \
-                                            const double *, double *);                             \
-  template void particle_stiffness<S>(const Weights<S> &, double, const double *, double *);       \
-  template void add_particle_blocks<S>(const Weights<S> &, const double *, const NodeBlocks &);
+                                            const double *, double *);
 PMPM_INSTANTIATE(LinearShape)
 PMPM_INSTANTIATE(UGIMPShape)
 #undef PMPM_INSTANTIATE
+#undef PMPM_INSTANTIATE_D
 
 } // namespace pmpm

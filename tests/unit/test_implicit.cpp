@@ -10,7 +10,9 @@
 //   entry, the branch the same at G and G +- eps (else the trial is skipped, and counted);
 //   implicit_gradient: a linear nodal displacement u_i = A x_i gives G = A and u_p = A x_p at every
 //   particle (linear completeness of both shapes), and implicit_internal_force of a uniform P sums
-//   to zero over the nodes (the gradients of a partition of unity sum to zero).
+//   to zero over the nodes (the gradients of a partition of unity sum to zero); in 3D also one
+//   particle's stiffness (particle_stiffness, and through add_particle_blocks' node blocks) times
+//   a random du against the internal force of the linear P = A4 : G(du).
 #include "check.hpp"
 #include "pmpm/solvers/implicit_kernels.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
@@ -275,6 +277,111 @@ template <class Shape> void test_completeness() {
   CHECK_CLOSE(sum[1], 0.0, 1e-14);
 }
 
+// The 3D kernels on a 6 x 6 x 6 node patch (h = 0.5 from (-1, 2, 0.5)), particles inside its
+// interior cells: a linear nodal displacement u_i = A x_i gives G = A and u_p = A x_p (linear
+// completeness); a uniform P's internal force sums to zero; and one particle's stiffness is the
+// derivative of its internal force: with P = A4 : G (A4 random), the force of G(du) equals K du
+// from particle_stiffness, and the same product through add_particle_blocks' 3D node blocks.
+template <class Shape> void test_kernels3d() {
+  constexpr int D = 3, NN = Weights<Shape, 3>::NN, NS = Shape::NS, N1 = 6, NODES = N1 * N1 * N1;
+  const double h = 0.5, o[3] = {-1.0, 2.0, 0.5};
+  NodalViewT<3> U, M, R;
+  std::vector<double> u(NODES * D), mk(NODES * D, 1.0), r(NODES * D, 0.0);
+  for (NodalViewT<3> *v : {&U, &M, &R}) {
+    v->h = h;
+    for (int d = 0; d < D; ++d) {
+      v->origin[d] = o[d];
+      v->gm[d] = N1;
+    }
+  }
+  U.data = u.data();
+  M.data = mk.data();
+  R.data = r.data();
+  const double A[9] = {0.01, -0.02, 0.03, 0.005, 0.02, -0.01, 0.015, -0.025, 0.004};
+  for (int k = 0; k < N1; ++k)
+    for (int j = 0; j < N1; ++j)
+      for (int i = 0; i < N1; ++i) {
+        const double X[3] = {o[0] + i * h, o[1] + j * h, o[2] + k * h};
+        for (int a = 0; a < D; ++a)
+          U.node(i, j, k)[a] = A[3 * a] * X[0] + A[3 * a + 1] * X[1] + A[3 * a + 2] * X[2];
+      }
+  pmpm_test::Lcg rng(13);
+  const int n = 12;
+  std::vector<double> x(D * n), lp(D * n, 0.25 * h), vol(n, 0.01), G(9 * n), Pk(9 * n);
+  for (int p = 0; p < n; ++p)
+    for (int d = 0; d < D; ++d) x[D * p + d] = o[d] + h * (1.0 + 3.0 * rng.next());
+  for (int p = 0; p < n; ++p)
+    for (int k = 0; k < 9; ++k) Pk[9 * p + k] = 1.0 + k;
+  ParticleView P;
+  P.n = n;
+  P.x = x.data();
+  P.lp = lp.data();
+  P.vol = vol.data();
+  std::vector<double> up(D * n);
+  implicit_gradient<Shape, 3>(P, U, M, G.data(), up.data());
+  for (int p = 0; p < n; ++p) {
+    for (int k = 0; k < 9; ++k) CHECK_CLOSE(G[9 * p + k], A[k], 1e-15);
+    for (int a = 0; a < D; ++a)
+      CHECK_CLOSE(up[D * p + a],
+                  A[3 * a] * x[D * p] + A[3 * a + 1] * x[D * p + 1] + A[3 * a + 2] * x[D * p + 2],
+                  1e-15);
+  }
+  implicit_internal_force<Shape, 3>(P, Pk.data(), R);
+  for (int a = 0; a < D; ++a) {
+    double sum = 0;
+    for (int q = 0; q < NODES; ++q) sum += r[D * q + a];
+    CHECK_CLOSE(sum, 0.0, 1e-14);
+  }
+  // one particle's stiffness against its linear internal force
+  double A4[81];
+  for (double &a : A4) a = rng.next() - 0.5;
+  for (double &v : u) v = rng.next() - 0.5; // a random du
+  ParticleView P1 = P;
+  P1.n = 1;
+  double G1[9], P1k[9];
+  implicit_gradient<Shape, 3>(P1, U, M, G1);
+  for (int a = 0; a < D; ++a)
+    for (int j = 0; j < D; ++j) {
+      double v = 0;
+      for (int q = 0; q < 9; ++q) v += A4[(a * D + j) * 9 + q] * G1[q];
+      P1k[a * D + j] = v;
+    }
+  std::fill(r.begin(), r.end(), 0.0);
+  implicit_internal_force<Shape, 3>(P1, P1k, R);
+  Weights<Shape, 3> W;
+  weights<Shape, 3>(P1.x, P1.lp, U.origin, U.h, W);
+  std::vector<double> K(NN * D * NN * D);
+  particle_stiffness<Shape, 3>(W, vol[0], A4, K.data());
+  const int w = NS - 1, nb = 2 * w + 1;
+  std::vector<double> blocks(static_cast<size_t>(NODES) * nb * nb * nb * 9, 0.0);
+  NodeBlocksT<3> B;
+  B.w = w;
+  B.data = blocks.data();
+  for (int d = 0; d < D; ++d) B.gm[d] = N1;
+  add_particle_blocks<Shape, 3>(W, K.data(), B);
+  double scale = 0;
+  for (double v : r) scale = std::fmax(scale, std::fabs(v));
+  CHECK(scale > 0);
+  for (int k = 0; k < NN; ++k) {
+    const int ki = k % NS, kj = (k / NS) % NS, kk = k / (NS * NS);
+    for (int a = 0; a < D; ++a) {
+      double Kdu = 0, Bdu = 0;
+      for (int m = 0; m < NN; ++m) {
+        const int mi = m % NS, mj = (m / NS) % NS, mk = m / (NS * NS);
+        const double *dum = U.node(W, m);
+        const double *b =
+            B.block(W.base[0] + ki, W.base[1] + kj, W.base[2] + kk, mi - ki, mj - kj, mk - kk);
+        for (int c = 0; c < D; ++c) {
+          Kdu += K[(k * D + a) * NN * D + (m * D + c)] * dum[c];
+          Bdu += b[a * D + c] * dum[c];
+        }
+      }
+      CHECK_CLOSE(Kdu, R.node(W, k)[a], 1e-13 * scale);
+      CHECK_CLOSE(Bdu, Kdu, 1e-13 * scale);
+    }
+  }
+}
+
 } // namespace
 
 int main() {
@@ -286,5 +393,7 @@ int main() {
   test_plastic_tangents<3>();
   test_completeness<LinearShape>();
   test_completeness<UGIMPShape>();
+  test_kernels3d<LinearShape>();
+  test_kernels3d<UGIMPShape>();
   return pmpm_test::report("implicit");
 }

@@ -21,24 +21,40 @@
 
 namespace pmpm {
 
-// Ghosted nodal array with DIM values per node (a DMDA of DIM dofs), node (i, j) in global
-// indices at data[((j - gs[1]) * gm[0] + (i - gs[0])) * DIM].
-struct NodalView {
+// Ghosted nodal array with D values per node (a DMDA of D dofs), node (i, j) in global indices at
+// data[((j - gs[1]) * gm[0] + (i - gs[0])) * D], in 3D node (i, j, k) at
+// data[(((k - gs[2]) * gm[1] + (j - gs[1])) * gm[0] + (i - gs[0])) * D].
+template <int D> struct NodalViewT {
   double h = 0;
-  double origin[DIM] = {0, 0};
-  PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0};
+  double origin[D] = {};
+  PetscInt gs[D] = {}, gm[D] = {};
   double *data = nullptr;
   double *node(PetscInt i, PetscInt j) const {
-    return data + ((j - gs[1]) * gm[0] + (i - gs[0])) * DIM;
+    static_assert(D == 2, "node(i, j) is 2D");
+    return data + ((j - gs[1]) * gm[0] + (i - gs[0])) * D;
+  }
+  double *node(PetscInt i, PetscInt j, PetscInt k) const {
+    static_assert(D == 3, "node(i, j, k) is 3D");
+    return data + (((k - gs[2]) * gm[1] + (j - gs[1])) * gm[0] + (i - gs[0])) * D;
+  }
+  // node k of a particle's weights (Weights' order: x fastest)
+  template <class Shape> double *node(const Weights<Shape, D> &W, int k) const {
+    constexpr int NS = Shape::NS;
+    if constexpr (D == 2)
+      return node(W.base[0] + k % NS, W.base[1] + k / NS);
+    else
+      return node(W.base[0] + k % NS, W.base[1] + (k / NS) % NS, W.base[2] + k / (NS * NS));
   }
 };
+using NodalView = NodalViewT<DIM>;
 
-// G_p = sum_i (mask_i du_i) (x) grad S_i(x_p), row-major (G[a * DIM + j] = d du_a / d x_j);
+// G_p = sum_i (mask_i du_i) (x) grad S_i(x_p), row-major (G[a * D + j] = d du_a / d x_j);
 // mask is 1 on free dofs and 0 on held or unsupported ones (their du does not deform anything).
-// With up, also the particles' increments u_p = sum_i S_i(x_p) mask_i du_i (DIM values each).
-template <class Shape>
-void implicit_gradient(const ParticleView &P, const NodalView &U, const NodalView &mask, double *G,
-                       double *up = nullptr);
+// With up, also the particles' increments u_p = sum_i S_i(x_p) mask_i du_i (D values each).
+// D = 2 or 3, as the kernels below that take a D.
+template <class Shape, int D = DIM>
+void implicit_gradient(const ParticleView &P, const NodalViewT<D> &U, const NodalViewT<D> &mask,
+                       double *G, double *up = nullptr);
 
 // Trial kinematics for the material batch: F_new = (I + G) F^n per particle. These three work
 // per particle in D = 2 or 3 dimensions (G, F, P: D x D row-major; stresses NStress<D>).
@@ -55,8 +71,8 @@ template <int D = DIM>
 void implicit_piola(PetscInt n, const double *G, const double *stress, double *Pk);
 
 // R_i += V_p^n P_p grad S_i(x_p) (into the ghosted view; sum the ghosts across ranks after).
-template <class Shape>
-void implicit_internal_force(const ParticleView &P, const double *Pk, const NodalView &R);
+template <class Shape, int D = DIM>
+void implicit_internal_force(const ParticleView &P, const double *Pk, const NodalViewT<D> &R);
 
 // Equilibrium steps at full load solve on the reset grid, where relaxation's criterion is checked
 // (newton.cpp): the particles' trial positions x' = x^n + u_p move across the fixed grid, and
@@ -112,27 +128,36 @@ inline void piola_tangent(const Material &m, const double *G, const double *s_ol
 }
 
 // One particle's stiffness over its support: the NN nodes of weights() (node k at base +
-// (k % NS, k / NS)); K[(k DIM + a) (NN DIM) + (m DIM + b)] = V sum_jl dS_k/dx_j A_ajbl dS_m/dx_l.
-template <class Shape>
-void particle_stiffness(const Weights<Shape> &W, double V, const double *A, double *K);
+// (k % NS, k / NS[, k / NS^2])); K[(k D + a) (NN D) + (m D + b)] = V sum_jl dS_k/dx_j A_ajbl
+// dS_m/dx_l.
+template <class Shape, int D = DIM>
+void particle_stiffness(const Weights<Shape, D> &W, double V, const double *A, double *K);
 
 // The tangent gathered per node before it goes into the matrix (one insertion per node row
-// instead of one per particle): for every ghosted node, the DIM x DIM blocks coupling it to its
-// (2w + 1)^2 neighbours, w the stencil width; block (row node (i, j), column node (i + di, j + dj))
-// at block(i, j, di, dj), entry (a, b) at [a * DIM + b].
-struct NodeBlocks {
-  PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0};
+// instead of one per particle): for every ghosted node, the D x D blocks coupling it to its
+// (2w + 1)^D neighbours, w the stencil width; block (row node (i, j), column node (i + di, j + dj))
+// at block(i, j, di, dj) (3D: block(i, j, k, di, dj, dk)), entry (a, b) at [a * D + b].
+template <int D> struct NodeBlocksT {
+  PetscInt gs[D] = {}, gm[D] = {};
   int w = 0;
   double *data = nullptr;
   double *block(PetscInt i, PetscInt j, int di, int dj) const {
+    static_assert(D == 2, "block(i, j, di, dj) is 2D");
     const int nb = 2 * w + 1;
     return data +
-           (((j - gs[1]) * gm[0] + (i - gs[0])) * nb * nb + (dj + w) * nb + (di + w)) * DIM * DIM;
+           (((j - gs[1]) * gm[0] + (i - gs[0])) * nb * nb + (dj + w) * nb + (di + w)) * D * D;
+  }
+  double *block(PetscInt i, PetscInt j, PetscInt k, int di, int dj, int dk) const {
+    static_assert(D == 3, "block(i, j, k, di, dj, dk) is 3D");
+    const int nb = 2 * w + 1;
+    const PetscInt n = ((k - gs[2]) * gm[1] + (j - gs[1])) * gm[0] + (i - gs[0]);
+    return data + ((n * nb + (dk + w)) * nb * nb + (dj + w) * nb + (di + w)) * D * D;
   }
 };
+using NodeBlocks = NodeBlocksT<DIM>;
 
 // Add one particle's stiffness (particle_stiffness' layout) into the node blocks.
-template <class Shape>
-void add_particle_blocks(const Weights<Shape> &W, const double *K, const NodeBlocks &B);
+template <class Shape, int D = DIM>
+void add_particle_blocks(const Weights<Shape, D> &W, const double *K, const NodeBlocksT<D> &B);
 
 } // namespace pmpm
