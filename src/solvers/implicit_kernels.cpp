@@ -6,8 +6,9 @@ namespace pmpm {
 
 namespace {
 // V^n J sigma' of the reset grid's force (implicit_kernels.hpp), J = det(I + G)
-inline MatN current_stress_volume(double V, const double *G, const double *stress) {
-  return V * (MatN::Identity() + mat_of(G)).determinant() * in_plane(stress);
+template <int D>
+inline MatD<D> current_stress_volume(double V, const double *G, const double *stress) {
+  return V * (MatD<D>::Identity() + mat_of<D>(G)).determinant() * in_plane<D>(stress);
 }
 } // namespace
 
@@ -86,60 +87,71 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
   }
 }
 
-template <class Shape>
+template <class Shape, int D>
 int reset_internal_force(const ParticleView &P, const double *G, const double *stress,
-                         const double *Pk, const double *u, const double gw[DIM],
-                         const NodalView &R) {
-  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
-  Weights<Shape> W0, W;
+                         const double *Pk, const double *u, const double *gw,
+                         const NodalViewT<D> &R) {
+  constexpr int NN = Weights<Shape, D>::NN, NS = Shape::NS;
+  Weights<Shape, D> W0, W;
   int outside = 0;
   for (PetscInt p = 0; p < P.n; ++p) {
     const double V = P.vol[p];
-    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, R.origin, R.h, W0);
-    const double xt[DIM] = {P.x[p * DIM] + u[p * DIM], P.x[p * DIM + 1] + u[p * DIM + 1]};
-    weights<Shape>(xt, P.lp + p * DIM, R.origin, R.h, W);
+    weights<Shape, D>(P.x + p * D, P.lp + p * D, R.origin, R.h, W0);
+    double xt[D];
+    for (int d = 0; d < D; ++d) xt[d] = P.x[p * D + d] + u[p * D + d];
+    weights<Shape, D>(xt, P.lp + p * D, R.origin, R.h, W);
     bool in = true;
-    for (int d = 0; d < DIM; ++d)
+    for (int d = 0; d < D; ++d)
       in = in && W.base[d] >= R.gs[d] && W.base[d] + NS <= R.gs[d] + R.gm[d];
     if (!in) {
       ++outside;
-      const double *Pm = Pk + p * DIM * DIM;
+      const double *Pm = Pk + p * D * D;
       for (int k = 0; k < NN; ++k) {
-        double *r = R.node(W0.base[0] + k % NS, W0.base[1] + k / NS);
-        for (int a = 0; a < DIM; ++a)
-          for (int d = 0; d < DIM; ++d) r[a] += V * Pm[a * DIM + d] * W0.grad[k][d];
+        double *r = R.node(W0, k);
+        for (int a = 0; a < D; ++a)
+          for (int d = 0; d < D; ++d) r[a] += V * Pm[a * D + d] * W0.grad[k][d];
       }
       continue;
     }
-    const MatN s = current_stress_volume(V, G + p * DIM * DIM, stress + p * NSTRESS);
-    const double wg[DIM] = {P.weight[p] * gw[0], P.weight[p] * gw[1]};
+    const MatD<D> s = current_stress_volume<D>(V, G + p * D * D, stress + p * NStress<D>);
+    double wg[D];
+    for (int d = 0; d < D; ++d) wg[d] = P.weight[p] * gw[d];
     for (int k = 0; k < NN; ++k) {
-      double *r = R.node(W.base[0] + k % NS, W.base[1] + k / NS);
-      for (int a = 0; a < DIM; ++a)
-        r[a] += s(a, 0) * W.grad[k][0] + s(a, 1) * W.grad[k][1] - wg[a] * W.w[k];
-      double *r0 = R.node(W0.base[0] + k % NS, W0.base[1] + k / NS);
-      for (int a = 0; a < DIM; ++a) r0[a] += wg[a] * W0.w[k];
+      double *r = R.node(W, k);
+      for (int a = 0; a < D; ++a) {
+        if constexpr (D == 2) {
+          r[a] += s(a, 0) * W.grad[k][0] + s(a, 1) * W.grad[k][1] - wg[a] * W.w[k];
+        } else {
+          r[a] += s(a, 0) * W.grad[k][0] + s(a, 1) * W.grad[k][1] + s(a, 2) * W.grad[k][2] -
+                  wg[a] * W.w[k];
+        }
+      }
+      double *r0 = R.node(W0, k);
+      for (int a = 0; a < D; ++a) r0[a] += wg[a] * W0.w[k];
     }
   }
   return outside;
 }
 
-template <class Shape>
-void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], double V,
+template <class Shape, int D>
+void particle_reset_stiffness(const Weights<Shape, D> &W, const double H[][NHess<D>], double V,
                               const double *G, const double *stress, double weight,
-                              const double gw[DIM], double *K) {
-  constexpr int NN = Weights<Shape>::NN, ND = NN * DIM;
-  const MatN Vs = current_stress_volume(V, G, stress);
-  const double wg[DIM] = {weight * gw[0], weight * gw[1]};
+                              const double *gw, double *K) {
+  constexpr int NN = Weights<Shape, D>::NN, ND = NN * D;
+  const MatD<D> Vs = current_stress_volume<D>(V, G, stress);
+  double wg[D];
+  for (int d = 0; d < D; ++d) wg[d] = weight * gw[d];
   for (int k = 0; k < NN; ++k) {
-    const double Hk[DIM][DIM] = {{H[k][0], H[k][1]}, {H[k][1], H[k][2]}};
-    for (int a = 0; a < DIM; ++a)
+    double Hk[D][D];
+    for (int b = 0; b < D; ++b)
+      for (int c = 0; c < D; ++c) Hk[b][c] = H[k][hessian_index<D>(b, c)];
+    for (int a = 0; a < D; ++a)
       for (int m = 0; m < NN; ++m)
-        for (int c = 0; c < DIM; ++c) {
+        for (int c = 0; c < D; ++c) {
           double v = -wg[a] * W.grad[k][c] * W.w[m];
-          for (int b = 0; b < DIM; ++b)
+          for (int b = 0; b < D; ++b)
             v += Vs(a, b) * (Hk[b][c] * W.w[m] + W.grad[k][c] * W.grad[m][b]);
-          K[(k * DIM + a) * ND + (m * DIM + c)] += v;
+          K[(k * D + a) * ND + (m * D + c)] += v;
         }
   }
 }
@@ -183,18 +195,18 @@ void add_particle_blocks(const Weights<Shape, D> &W, const double *K, const Node
                                         const NodalViewT<D> &, double *, double *);                \
   template void implicit_internal_force<S, D>(const ParticleView &, const double *,                \
                                               const NodalViewT<D> &);                              \
+  template int reset_internal_force<S, D>(const ParticleView &, const double *, const double *,    \
+                                          const double *, const double *, const double *,          \
+                                          const NodalViewT<D> &);                                  \
+  template void particle_reset_stiffness<S, D>(const Weights<S, D> &, const double[][NHess<D>],    \
+                                               double, const double *, const double *, double,     \
+                                               const double *, double *);                          \
   template void particle_stiffness<S, D>(const Weights<S, D> &, double, const double *, double *); \
   template void add_particle_blocks<S, D>(const Weights<S, D> &, const double *,                   \
                                           const NodeBlocksT<D> &);
 #define PMPM_INSTANTIATE(S)                                                                        \
   PMPM_INSTANTIATE_D(S, 2)                                                                         \
-  PMPM_INSTANTIATE_D(S, 3)                                                                         \
-  template int reset_internal_force<S>(const ParticleView &, const double *, const double *,       \
-                                       const double *, const double *, const double *,             \
-                                       const NodalView &);                                         \
-  template void particle_reset_stiffness<S>(const Weights<S> &, const double[][3], double,         \
-                                            const double *, const double *, double,                \
-                                            const double *, double *);
+  PMPM_INSTANTIATE_D(S, 3)
 PMPM_INSTANTIATE(LinearShape)
 PMPM_INSTANTIATE(UGIMPShape)
 #undef PMPM_INSTANTIATE

@@ -12,7 +12,9 @@
 //   particle (linear completeness of both shapes), and implicit_internal_force of a uniform P sums
 //   to zero over the nodes (the gradients of a partition of unity sum to zero); in 3D also one
 //   particle's stiffness (particle_stiffness, and through add_particle_blocks' node blocks) times
-//   a random du against the internal force of the linear P = A4 : G(du).
+//   a random du against the internal force of the linear P = A4 : G(du); the reset grid's 3D
+//   terms: the weights' second derivatives against differences of their gradients, and a plane
+//   problem's 3D reset force and stiffness summed along z against the 2D kernels'.
 #include "check.hpp"
 #include "pmpm/solvers/implicit_kernels.hpp"
 #include "pmpm/materials/drucker_prager.hpp"
@@ -384,6 +386,126 @@ template <class Shape> void test_kernels3d() {
 
 } // namespace
 
+// The reset grid's 3D terms. (a) weight_hessians<Shape, 3> against central differences of the
+// 3D gradients (delta 1e-6 cells; positions away from the weights' kinks, where the gradients are
+// linear and the differences exact to round-off, ~1e-8 / h^2 against values ~10 / h^2: bound
+// 1e-6 / h^2). (b) A plane problem in 3D: a particle, its stress (no out-of-plane shear), du and u
+// without z components; the 3D reset force and reset stiffness summed over each column of nodes
+// along z (the z weights sum to one) equal the verified 2D kernels' to round-off (1e-13).
+template <class Shape> void test_reset3d() {
+  constexpr int NS = Shape::NS, NN3 = Weights<Shape, 3>::NN, NN2 = Weights<Shape, 2>::NN;
+  const double h = 0.5, o[3] = {-1.0, 2.0, 0.5};
+  pmpm_test::Lcg rng(17);
+  // (a)
+  int compared = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    double x[3], l[3];
+    bool kink = false;
+    for (int d = 0; d < 3; ++d) {
+      x[d] = o[d] + h * (2.0 + 2.0 * rng.next());
+      l[d] = 0.25 * h;
+      const double xi = (x[d] - o[d]) / h, li = l[d] / h;
+      auto near = [](double v) { return std::fabs(v - std::round(v)) < 1e-5; };
+      kink = kink || (NS == 2 ? near(xi) : near(xi - li) || near(xi + li));
+    }
+    if (kink) continue;
+    ++compared;
+    double Hs[NN3][NHess<3>];
+    weight_hessians<Shape, 3>(x, l, o, h, Hs);
+    for (int e = 0; e < 3; ++e) {
+      Weights<Shape, 3> Wp, Wm;
+      double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]};
+      xp[e] += 1e-6 * h;
+      xm[e] -= 1e-6 * h;
+      weights<Shape, 3>(xp, l, o, h, Wp);
+      weights<Shape, 3>(xm, l, o, h, Wm);
+      for (int k = 0; k < NN3; ++k)
+        for (int d = 0; d < 3; ++d)
+          CHECK_CLOSE(Hs[k][hessian_index<3>(d, e)],
+                      (Wp.grad[k][d] - Wm.grad[k][d]) / (2e-6 * h), 1e-6 / (h * h));
+    }
+  }
+  CHECK(compared >= 20);
+  // (b) one particle at (x, y, z), nodes 6 x 6 (x 6 along z)
+  constexpr int N1 = 6;
+  double x3[3], lp3[3] = {0.25 * h, 0.25 * h, 0.25 * h};
+  for (int d = 0; d < 3; ++d) x3[d] = o[d] + h * (2.0 + rng.next());
+  const double u3[3] = {0.01 * (rng.next() - 0.5), 0.01 * (rng.next() - 0.5), 0.0};
+  double G3[9] = {}, G2[4];
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) G3[a * 3 + b] = G2[a * 2 + b] = 0.05 * (rng.next() - 0.5);
+  double s3[6] = {}, s2[4];
+  for (int q = 0; q < 3; ++q) s3[q] = s2[q] = rng.next() - 0.5; // xx yy zz
+  s3[3] = s2[3] = rng.next() - 0.5;                             // xy; yz = xz = 0
+  const double gw3[3] = {0.3, -1.0, 0.0}, weight = 2.0, V = 0.01;
+  double P3[9], P2[4];
+  implicit_piola<3>(1, G3, s3, P3);
+  implicit_piola<2>(1, G2, s2, P2);
+  ParticleView Q3, Q2;
+  Q3.n = Q2.n = 1;
+  double vol = V, wt = weight, x2[2] = {x3[0], x3[1]}, lp2[2] = {lp3[0], lp3[1]};
+  Q3.x = x3;
+  Q3.lp = lp3;
+  Q2.x = x2;
+  Q2.lp = lp2;
+  Q3.vol = Q2.vol = &vol;
+  Q3.weight = Q2.weight = &wt;
+  NodalViewT<3> R3;
+  NodalViewT<2> R2;
+  std::vector<double> r3(N1 * N1 * N1 * 3, 0.0), r2(N1 * N1 * 2, 0.0);
+  R3.h = R2.h = h;
+  for (int d = 0; d < 3; ++d) {
+    R3.origin[d] = o[d];
+    R3.gm[d] = N1;
+    if (d < 2) {
+      R2.origin[d] = o[d];
+      R2.gm[d] = N1;
+    }
+  }
+  R3.data = r3.data();
+  R2.data = r2.data();
+  const double u2[2] = {u3[0], u3[1]};
+  CHECK((reset_internal_force<Shape, 3>(Q3, G3, s3, P3, u3, gw3, R3) == 0));
+  CHECK((reset_internal_force<Shape, 2>(Q2, G2, s2, P2, u2, gw3, R2) == 0));
+  double scale = 0;
+  for (double v : r2) scale = std::fmax(scale, std::fabs(v));
+  CHECK(scale > 0);
+  for (int j = 0; j < N1; ++j)
+    for (int i = 0; i < N1; ++i) {
+      double sum[3] = {0, 0, 0};
+      for (int k = 0; k < N1; ++k)
+        for (int a = 0; a < 3; ++a) sum[a] += R3.node(i, j, k)[a];
+      for (int a = 0; a < 2; ++a) CHECK_CLOSE(sum[a], R2.node(i, j)[a], 1e-13 * scale);
+      CHECK_CLOSE(sum[2], 0.0, 1e-13 * scale);
+    }
+  // the stiffness: K3 summed over the z offsets of its row and column nodes, in-plane entries
+  Weights<Shape, 3> W3;
+  Weights<Shape, 2> W2;
+  weights<Shape, 3>(x3, lp3, o, h, W3);
+  weights<Shape, 2>(x2, lp2, o, h, W2);
+  double H3[NN3][NHess<3>], H2[NN2][NHess<2>];
+  weight_hessians<Shape, 3>(x3, lp3, o, h, H3);
+  weight_hessians<Shape, 2>(x2, lp2, o, h, H2);
+  std::vector<double> K3(NN3 * 3 * NN3 * 3, 0.0), K2(NN2 * 2 * NN2 * 2, 0.0);
+  particle_reset_stiffness<Shape, 3>(W3, H3, V, G3, s3, weight, gw3, K3.data());
+  particle_reset_stiffness<Shape, 2>(W2, H2, V, G2, s2, weight, gw3, K2.data());
+  double kscale = 0;
+  for (double v : K2) kscale = std::fmax(kscale, std::fabs(v));
+  CHECK(kscale > 0);
+  for (int k2 = 0; k2 < NN2; ++k2)
+    for (int m2 = 0; m2 < NN2; ++m2)
+      for (int a = 0; a < 2; ++a)
+        for (int c = 0; c < 2; ++c) {
+          double sum = 0;
+          for (int kz = 0; kz < NS; ++kz)
+            for (int mz = 0; mz < NS; ++mz) {
+              const int k3 = k2 + NN2 * kz, m3 = m2 + NN2 * mz;
+              sum += K3[(k3 * 3 + a) * NN3 * 3 + (m3 * 3 + c)];
+            }
+          CHECK_CLOSE(sum, K2[(k2 * 2 + a) * NN2 * 2 + (m2 * 2 + c)], 1e-13 * kscale);
+        }
+}
+
 int main() {
   test_tangent<2>(false); // linear elastic
   test_tangent<2>(true);  // neo-Hookean
@@ -395,5 +517,7 @@ int main() {
   test_completeness<UGIMPShape>();
   test_kernels3d<LinearShape>();
   test_kernels3d<UGIMPShape>();
+  test_reset3d<LinearShape>();
+  test_reset3d<UGIMPShape>();
   return pmpm_test::report("implicit");
 }

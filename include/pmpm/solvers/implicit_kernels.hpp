@@ -89,18 +89,18 @@ void implicit_internal_force(const ParticleView &P, const double *Pk, const Noda
 // The reset grid's residual (above) into the ghosted view R, without the load at x^n; gw = lambda
 // g. A particle whose support at x' leaves the view (it moved across a rank's ghost layer) adds
 // its moved-grid force V^n P grad S_i(x^n) instead; returns how many did.
-template <class Shape>
+template <class Shape, int D = DIM>
 int reset_internal_force(const ParticleView &P, const double *G, const double *stress,
-                         const double *Pk, const double *u, const double gw[DIM],
-                         const NodalView &R);
+                         const double *Pk, const double *u, const double *gw,
+                         const NodalViewT<D> &R);
 
 // Add the reset grid's term (above) to one particle's stiffness K (particle_stiffness' layout):
 // W and H the weights and their second derivatives at x^n, V = V^n, G and stress the particle's
 // increment gradient and trial Cauchy stress, weight = w_p, gw = lambda g.
-template <class Shape>
-void particle_reset_stiffness(const Weights<Shape> &W, const double H[][3], double V,
+template <class Shape, int D = DIM>
+void particle_reset_stiffness(const Weights<Shape, D> &W, const double H[][NHess<D>], double V,
                               const double *G, const double *stress, double weight,
-                              const double gw[DIM], double *K);
+                              const double *gw, double *K);
 
 // A = dP / dG (D^2 x D^2, A[(a D + j) D^2 + (b D + l)] = dP_aj / dG_bl) of one particle in D = 2
 // or 3 dimensions, exact for its material's update: the law's own tangent
