@@ -446,6 +446,8 @@ class CoverScene final : public Scene {
                      "the whole surface, drop %s",
                      o, o);
     }
+    if (raw.npx < 2 || raw.npz < 2 || raw.nph != raw.npx * raw.npz)
+      PetscFunctionReturn(0); // under -help the checks above let it through: no grid
     plan_x_.assign(raw.px.begin(), raw.px.begin() + raw.npx);
     plan_z_.assign(raw.pz.begin(), raw.pz.begin() + raw.npz);
     plan_h_.assign(raw.ph.begin(), raw.ph.begin() + raw.nph);
