@@ -85,6 +85,28 @@ def stages(out):
         return list(csv.DictReader(f))
 
 
+def waste_column_tops(out, nstages):
+    """A 3D run's waste (material 0) by particle column (the same initial x and z): the heights y
+    of every particle (sorted by id) at the end of each of nstages stages, their initial
+    positions, and the mask of each column's top particle."""
+    import h5py
+    import numpy as np
+    y = []
+    for k in range(nstages):
+        with h5py.File(os.path.join(out, f"series/stage_{k:03d}.h5"), "r") as f:
+            o = np.argsort(f["particles/id"][:].ravel())
+            y.append(f["particles/position"][:][o][:, 1])
+            x0 = f["particles/position0"][:][o]
+            mat = f["particles/material"][:].ravel()[o]
+    waste = mat == 0
+    key = np.round(x0[:, 0], 6) * 1e6 + np.round(x0[:, 2], 6)  # a particle column
+    top = np.zeros(len(x0), bool)
+    for kk in np.unique(key[waste]):
+        col = np.where(waste & (key == kk))[0]
+        top[col[np.argmax(x0[col, 1])]] = True
+    return y, x0, top
+
+
 def waste_top(out, k):
     """Mean height of the top row of waste particles (material 0) at the end of stage k."""
     import h5py

@@ -56,7 +56,8 @@ import math
 import sys
 
 import numpy as np
-from pmpmtest import Checks, particles, run, stages, summary, uniform_degradation
+from pmpmtest import (Checks, particles, run, stages, summary, uniform_degradation,
+                      waste_column_tops)
 
 exe, np_, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 c = Checks(f"cover3d_np{np_}")
@@ -164,7 +165,6 @@ if np_ == 1:
     # along x (the plane's own grade, a 4 m wide box 0.5 m deep: the same cover turned a quarter),
     # and both against the closed form of uniform isotropic degradation, which holds for any
     # surface (rollers on every side and a fixed base: u_y = -e y in the waste, no stress change)
-    import h5py
     nu, ev = 0.3, 0.05
     factor = (1 + nu) / (1 - nu) / 3
     gr = ["-options_file", "tests/cover_column.opts", "-dim", "3", "-cover_shrink_mode",
@@ -183,19 +183,7 @@ if np_ == 1:
         rows = stages(d)
         c.check(f"deck graded along {ax}: three stages, all converged",
                 len(rows) == 3 and all(r["converged"] == "1" for r in rows))
-        y, x0 = [], None
-        for k in range(3):
-            with h5py.File(f"{d}/series/stage_{k:03d}.h5") as f:
-                o = np.argsort(f["particles/id"][:].ravel())
-                y.append(f["particles/position"][:][o][:, 1])
-                x0 = f["particles/position0"][:][o]
-                mat = f["particles/material"][:].ravel()[o]
-        waste = mat == 0
-        key = np.round(x0[:, 0], 6) * 1e6 + np.round(x0[:, 2], 6)  # a particle column
-        top = np.zeros(len(x0), bool)
-        for kk in np.unique(key[waste]):
-            col = np.where(waste & (key == kk))[0]
-            top[col[np.argmax(x0[col, 1])]] = True
+        y, x0, top = waste_column_tops(d, 3)
         for k in (1, 2):
             exact = y[k - 1][top] * (1 - math.exp(-factor * ev))
             err = (y[k - 1][top] - y[k][top]) / exact - 1

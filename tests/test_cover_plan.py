@@ -24,7 +24,7 @@ import sys
 
 import h5py
 import numpy as np
-from pmpmtest import Checks, particles, run, stages
+from pmpmtest import Checks, particles, run, stages, waste_column_tops
 
 exe, out = sys.argv[1], sys.argv[2]
 c = Checks("cover_plan")
@@ -64,19 +64,7 @@ rows = stages(d1)
 c.check("three stages, all converged", len(rows) == 3 and all(r["converged"] == "1" for r in rows))
 nu, ev = 0.3, 0.05
 factor = (1 + nu) / (1 - nu) / 3
-y = []
-for k in range(3):
-    with h5py.File(f"{d1}/series/stage_{k:03d}.h5") as f:
-        o = np.argsort(f["particles/id"][:].ravel())
-        y.append(f["particles/position"][:][o][:, 1])
-        x0 = f["particles/position0"][:][o]
-        mat = f["particles/material"][:].ravel()[o]
-waste = mat == 0
-key = np.round(x0[:, 0], 6) * 1e6 + np.round(x0[:, 2], 6)  # a particle column
-top = np.zeros(len(x0), bool)
-for kk in np.unique(key[waste]):
-    col = np.where(waste & (key == kk))[0]
-    top[col[np.argmax(x0[col, 1])]] = True
+y, x0, top = waste_column_tops(d1, 3)
 c.check(f"the top row of waste follows the mound ({top.sum()} columns; highest "
         f"{y[0][top].max():.3f} m, lowest {y[0][top].min():.3f} m)",
         y[0][top].max() - y[0][top].min() > 0.07)

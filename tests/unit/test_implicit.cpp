@@ -229,6 +229,17 @@ template <int D> void test_plastic_tangents() {
   }
 }
 
+// A particle view of n particles over positions, half-sizes and volumes.
+ParticleView view_of(int n, std::vector<double> &x, std::vector<double> &lp,
+                     std::vector<double> &vol) {
+  ParticleView P;
+  P.n = n;
+  P.x = x.data();
+  P.lp = lp.data();
+  P.vol = vol.data();
+  return P;
+}
+
 template <class Shape> void test_completeness() {
   // a 6 x 6 node patch, h = 0.5 from (-1, 2); particles inside its interior cells
   const double h = 0.5;
@@ -258,11 +269,7 @@ template <class Shape> void test_completeness() {
     x[2 * p + 1] = 2.0 + h * (1.0 + 3.0 * rng.next());
     for (int k = 0; k < 4; ++k) Pk[4 * p + k] = 1.0 + k;
   }
-  ParticleView P;
-  P.n = n;
-  P.x = x.data();
-  P.lp = lp.data();
-  P.vol = vol.data();
+  ParticleView P = view_of(n, x, lp, vol);
   std::vector<double> up(2 * n);
   implicit_gradient<Shape>(P, U, M, G.data(), up.data());
   for (int p = 0; p < n; ++p) {
@@ -314,11 +321,7 @@ template <class Shape> void test_kernels3d() {
     for (int d = 0; d < D; ++d) x[D * p + d] = o[d] + h * (1.0 + 3.0 * rng.next());
   for (int p = 0; p < n; ++p)
     for (int k = 0; k < 9; ++k) Pk[9 * p + k] = 1.0 + k;
-  ParticleView P;
-  P.n = n;
-  P.x = x.data();
-  P.lp = lp.data();
-  P.vol = vol.data();
+  ParticleView P = view_of(n, x, lp, vol);
   std::vector<double> up(D * n);
   implicit_gradient<Shape, 3>(P, U, M, G.data(), up.data());
   for (int p = 0; p < n; ++p) {
@@ -421,8 +424,8 @@ template <class Shape> void test_reset3d() {
       weights<Shape, 3>(xm, l, o, h, Wm);
       for (int k = 0; k < NN3; ++k)
         for (int d = 0; d < 3; ++d)
-          CHECK_CLOSE(Hs[k][hessian_index<3>(d, e)],
-                      (Wp.grad[k][d] - Wm.grad[k][d]) / (2e-6 * h), 1e-6 / (h * h));
+          CHECK_CLOSE(Hs[k][hessian_index<3>(d, e)], (Wp.grad[k][d] - Wm.grad[k][d]) / (2e-6 * h),
+                      1e-6 / (h * h));
     }
   }
   CHECK(compared >= 20);
