@@ -64,7 +64,6 @@ template <int D> struct TangentKinematicsT {
     return J * (dtr(dG) * sn + ds - sn * fiT * dG.transpose()) * fiT;
   }
 };
-using TangentKinematics = TangentKinematicsT<DIM>;
 
 // A[(a D + j) D^2 + (b D + l)] = dP(e_b (x) e_l)_aj, dP(dG) a law's directional derivative.
 template <int D = DIM, class DP> inline void piola_directions(DP &&dP, double *A) {
