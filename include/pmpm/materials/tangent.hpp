@@ -1,6 +1,6 @@
-// What the material laws' consistent tangents (Material::piola_tangent) share: the step's
-// kinematics at one particle and the loop over the D^2 unit directions dG = e_b (x) e_l, in 2D
-// (plane strain, D = 2) and 3D (D = 3).
+// What the material laws' consistent tangents (Material::piola_tangent, piola_tangent3) share: the
+// step's kinematics at one particle and the loop over the D^2 unit directions dG = e_b (x) e_l,
+// in 2D (plane strain, D = 2) and 3D (D = 3).
 //
 // With f = I + G, J = det f, dJ = J tr(f^-1 dG), d(f^-T) = -f^-T dG^T f^-T, each law gives the
 // directional derivative dP[dG] of P = J sigma' f^-T:
