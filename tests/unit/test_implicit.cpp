@@ -387,8 +387,6 @@ template <class Shape> void test_kernels3d() {
   }
 }
 
-} // namespace
-
 // The reset grid's 3D terms. (a) weight_hessians<Shape, 3> against central differences of the
 // 3D gradients (delta 1e-6 cells; positions away from the weights' kinks, where the gradients are
 // linear and the differences exact to round-off, ~1e-8 / h^2 against values ~10 / h^2: bound
@@ -508,6 +506,8 @@ template <class Shape> void test_reset3d() {
           CHECK_CLOSE(sum, K2[(k2 * 2 + a) * NN2 * 2 + (m2 * 2 + c)], 1e-13 * kscale);
         }
 }
+
+} // namespace
 
 int main() {
   test_tangent<2>(false); // linear elastic

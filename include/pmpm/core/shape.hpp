@@ -139,47 +139,31 @@ template <int D> constexpr int hessian_index(int b, int c) {
 template <class Shape, int D = DIM>
 inline void weight_hessians(const double *x, const double *l, const double *origin, double h,
                             double H[][NHess<D>]) {
-  constexpr int NS = Shape::NS;
+  constexpr int NS = Shape::NS, NN = ipow(NS, D);
+  double w1[D][NS], dw1[D][NS], d2[D][NS];
+  int base[D];
   const double invh = 1.0 / h;
-  if constexpr (D == 2) {
-    double wx[NS], dwx[NS], wy[NS], dwy[NS], d2x[NS], d2y[NS];
-    int base[2];
-    const double xi = (x[0] - origin[0]) * invh, yi = (x[1] - origin[1]) * invh;
-    Shape::eval1d(xi, l[0] * invh, base[0], wx, dwx);
-    Shape::eval1d(yi, l[1] * invh, base[1], wy, dwy);
-    Shape::d2w1d(xi, l[0] * invh, d2x);
-    Shape::d2w1d(yi, l[1] * invh, d2y);
-    const double ih2 = invh * invh;
-    for (int b = 0; b < NS; ++b)
-      for (int a = 0; a < NS; ++a) {
-        const int k = b * NS + a;
-        H[k][0] = d2x[a] * wy[b] * ih2;
-        H[k][1] = dwx[a] * dwy[b] * ih2;
-        H[k][2] = wx[a] * d2y[b] * ih2;
-      }
-  } else {
-    double w1[D][NS], dw1[D][NS], d2[D][NS];
-    int base[D];
-    for (int d = 0; d < D; ++d) {
-      const double xi = (x[d] - origin[d]) * invh;
-      Shape::eval1d(xi, l[d] * invh, base[d], w1[d], dw1[d]);
-      Shape::d2w1d(xi, l[d] * invh, d2[d]);
-    }
-    const double ih2 = invh * invh;
-    constexpr int NN = ipow(NS, D);
-    for (int k = 0; k < NN; ++k) {
-      int i[D];
-      for (int d = 0, r = k; d < D; ++d, r /= NS) i[d] = r % NS;
-      for (int b = 0; b < D; ++b)
-        for (int c = b; c < D; ++c) {
-          double v = ih2;
-          for (int d = 0; d < D; ++d) {
-            const int n = (d == b) + (d == c); // how often x_d is differentiated
-            v *= n == 0 ? w1[d][i[d]] : n == 1 ? dw1[d][i[d]] : d2[d][i[d]];
-          }
-          H[k][hessian_index<D>(b, c)] = v;
+  for (int d = 0; d < D; ++d) {
+    const double xi = (x[d] - origin[d]) * invh;
+    Shape::eval1d(xi, l[d] * invh, base[d], w1[d], dw1[d]);
+    Shape::d2w1d(xi, l[d] * invh, d2[d]);
+  }
+  const double ih2 = invh * invh;
+  for (int k = 0; k < NN; ++k) {
+    int i[D];
+    for (int d = 0, r = k; d < D; ++d, r /= NS) i[d] = r % NS;
+    for (int b = 0; b < D; ++b)
+      for (int c = b; c < D; ++c) {
+        // the product over the directions of w, dw or d2w (x_d differentiated 0, 1 or 2 times),
+        // then 1 / h^2: in 2D d2x wy, dwx dwy, wx d2y times 1 / h^2, as before
+        double v = 1.0;
+        for (int d = 0; d < D; ++d) {
+          const int n = (d == b) + (d == c);
+          const double f = n == 0 ? w1[d][i[d]] : n == 1 ? dw1[d][i[d]] : d2[d][i[d]];
+          v = d == 0 ? f : v * f;
         }
-    }
+        H[k][hessian_index<D>(b, c)] = v * ih2;
+      }
   }
 }
 
