@@ -25,7 +25,6 @@ PetscErrorCode ExtrusionCheck(Simulation &sim) {
     bool refused;
     const char *what;
   } refusals[] = {
-      {s.solver != "relaxation", "-solver newton (use -solver relaxation)"},
       {s.geometry != Geometry::PlaneStrain, "-geometry axisymmetric"},
       {!sim.model.chain_specs.empty() && !sim.scene->extrudes_chains(),
        "this scene's membrane chains (its results read them in the plane; -scene pullout "

@@ -84,8 +84,9 @@ struct NewtonSolver final : EquilibriumSolver {
   std::vector<PetscInt> pdof;
   std::vector<double> ubar;       // per owned dof: the load step's prescribed increment (m)
   std::vector<double> support_du; // per prescribed entry: the stage's displacement (m)
-  double reaction[DIM] = {0, 0};  // the last residual's weighted support force (this rank)
-  PetscInt gs[DIM] = {0, 0}, gm[DIM] = {0, 0}, s[DIM] = {0, 0}, m[DIM] = {0, 0};
+  double reaction[3] = {};        // the last residual's weighted support force (this rank)
+  // the solve's nodes (D = sim.set.dim of them used): ghosted start and size, owned ones
+  PetscInt gs[3] = {}, gm[3] = {}, s[3] = {}, m[3] = {};
   PetscInt load_steps = 10, max_cuts = 6, max_equilibrium = 30;
   double cell_fraction = 0; // -newton_cell_fraction: largest |du| / h of a load step (0: off)
   double small_cut = 1e-9;  // -newton_small_cut: a node below this share of the largest nodal
@@ -145,11 +146,14 @@ constexpr double kEquilibriumRtol = 0.1;
 // often) and the footing at 1.05 q_u failed earlier.
 constexpr PetscInt kMaxIterations = 50;
 
-NodalView LocalView(const NewtonSolver &ns, double *data) {
-  NodalView v;
-  v.h = ns.sim->grid.h;
-  for (int d = 0; d < DIM; ++d) {
-    v.origin[d] = ns.sim->grid.origin[d];
+// The solve's ghosted nodes, over the explicit grid of dimension D (D = 2, 3: the functions
+// below that take a D run the solve in that dimension, -dim).
+template <int D> NodalViewT<D> LocalView(const NewtonSolver &ns, double *data) {
+  const GridT<D> &g = ns.sim->template grid_of<D>();
+  NodalViewT<D> v;
+  v.h = g.h;
+  for (int d = 0; d < D; ++d) {
+    v.origin[d] = g.origin[d];
     v.gs[d] = ns.gs[d];
     v.gm[d] = ns.gm[d];
   }
@@ -157,70 +161,82 @@ NodalView LocalView(const NewtonSolver &ns, double *data) {
   return v;
 }
 
+// gw = lambda g in D dimensions (in 3D gravity's z component is -dim 3's turn of the plane's).
+template <int D> void Gravity(const Simulation &sim, double lambda, double gw[D]) {
+  gw[0] = lambda * sim.set.gdir[0];
+  gw[1] = lambda * sim.set.gdir[1];
+  if constexpr (D == 3) gw[2] = lambda * sim.set.gdir_z;
+}
+
 // du (ghosted) to the trial state of every particle: G, F_new, trial stress and plastic strain
 // (copies; the committed state is untouched), and P.
-template <class Shape> PetscErrorCode TrialState(NewtonSolver &ns, Vec U, const ParticleView &P) {
+template <class Shape, int D>
+PetscErrorCode TrialState(NewtonSolver &ns, Vec U, const ParticleView &P) {
   Simulation &sim = *ns.sim;
   const double *u, *mk;
   PetscFunctionBeginUser;
   const size_t n = static_cast<size_t>(P.n);
-  ns.G.resize(n * DIM * DIM);
-  ns.Fnew.resize(n * DIM * DIM);
-  ns.Pk.resize(n * DIM * DIM);
-  ns.snew.assign(P.stress, P.stress + n * NSTRESS);
+  ns.G.resize(n * D * D);
+  ns.Fnew.resize(n * D * D);
+  ns.Pk.resize(n * D * D);
+  ns.snew.assign(P.stress, P.stress + n * NStress<D>);
   ns.epsp.assign(P.eps_p, P.eps_p + n);
   PetscCall(DMGlobalToLocal(ns.da, U, INSERT_VALUES, ns.Uloc));
   PetscCall(VecGetArrayRead(ns.Uloc, &u));
   PetscCall(VecGetArrayRead(ns.kinL, &mk));
-  if (ns.reset) ns.up.resize(n * DIM); // the equilibrium step's trial positions need u_p
-  implicit_gradient<Shape>(P, LocalView(ns, const_cast<double *>(u)),
-                           LocalView(ns, const_cast<double *>(mk)), ns.G.data(),
-                           ns.reset ? ns.up.data() : nullptr);
-  size_t off = 0; // the chains' points: the owners' increments, summed so every rank has all
-  for (const ChainStencil &S : ns.cst) {
-    chain_point_increment(S, LocalView(ns, const_cast<double *>(u)),
-                          LocalView(ns, const_cast<double *>(mk)), ns.cdu.data() + off);
-    off += S.mapped.size() * DIM;
+  if (ns.reset) ns.up.resize(n * D); // the equilibrium step's trial positions need u_p
+  implicit_gradient<Shape, D>(P, LocalView<D>(ns, const_cast<double *>(u)),
+                              LocalView<D>(ns, const_cast<double *>(mk)), ns.G.data(),
+                              ns.reset ? ns.up.data() : nullptr);
+  if constexpr (D == 2) { // the chains' points: the owners' increments, summed so every rank
+    size_t off = 0;       // has all (membrane chains are 2D)
+    for (const ChainStencil &S : ns.cst) {
+      chain_point_increment(S, LocalView<D>(ns, const_cast<double *>(u)),
+                            LocalView<D>(ns, const_cast<double *>(mk)), ns.cdu.data() + off);
+      off += S.mapped.size() * DIM;
+    }
   }
   PetscCall(VecRestoreArrayRead(ns.kinL, &mk));
   PetscCall(VecRestoreArrayRead(ns.Uloc, &u));
   if (!ns.cst.empty()) {
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, ns.cdu.data(), static_cast<int>(ns.cdu.size()),
                                MPI_DOUBLE, MPI_SUM, sim.comm));
-    off = 0;
+    size_t off = 0;
     for (size_t k = 0; k < sim.chains.size(); ++k) {
       chain_trial(sim.chains[k], ns.cst[k], ns.cdu.data() + off, ns.ctr[k]);
       off += static_cast<size_t>(sim.chains[k].n) * DIM;
     }
   }
-  implicit_deformation(P.n, ns.G.data(), P.F, ns.Fnew.data());
-  ns.Gm.resize(n * DIM * DIM);
-  implicit_midpoint_gradient(P.n, ns.G.data(), ns.Gm.data());
+  implicit_deformation<D>(P.n, ns.G.data(), P.F, ns.Fnew.data());
+  ns.Gm.resize(n * D * D);
+  implicit_midpoint_gradient<D>(P.n, ns.G.data(), ns.Gm.data());
   const double *eigen = ns.eigen.empty() ? nullptr : ns.eigen.data();
   UpdateStresses(sim, ns.Gm.data(), ns.Fnew.data(), ns.snew.data(), ns.epsp.data(), eigen);
-  implicit_piola(P.n, ns.G.data(), ns.snew.data(), ns.Pk.data());
+  implicit_piola<D>(P.n, ns.G.data(), ns.snew.data(), ns.Pk.data());
   PetscFunctionReturn(0);
 }
 
 // R = f_int(du) - lambda f_ext on free dofs, kref (du - ubar) on the others (ubar: a moving
 // support's increment, else 0). The prescribed dofs' rows before that, -R weighted by their
 // entries' weights, are the force the body puts on the supports (ns.reaction, this rank's).
-template <class Shape> PetscErrorCode Residual(NewtonSolver &ns, Vec U, Vec R) {
+template <class Shape, int D> PetscErrorCode Residual(NewtonSolver &ns, Vec U, Vec R) {
   ParticleView P;
   double *r;
   PetscFunctionBeginUser;
   PetscCall(ParticlesGetView(ns.sim->parts, P));
-  PetscCall(TrialState<Shape>(ns, U, P));
+  PetscCall(TrialState<Shape, D>(ns, U, P));
   PetscCall(VecZeroEntries(ns.Rloc));
   PetscCall(VecGetArray(ns.Rloc, &r));
   if (ns.reset) {
-    const double gw[DIM] = {ns.lambda * ns.sim->set.gdir[0], ns.lambda * ns.sim->set.gdir[1]};
-    ns.outside = reset_internal_force<Shape>(P, ns.G.data(), ns.snew.data(), ns.Pk.data(),
-                                             ns.up.data(), gw, LocalView(ns, r));
+    double gw[D];
+    Gravity<D>(*ns.sim, ns.lambda, gw);
+    ns.outside = reset_internal_force<Shape, D>(P, ns.G.data(), ns.snew.data(), ns.Pk.data(),
+                                                ns.up.data(), gw, LocalView<D>(ns, r));
   } else
-    implicit_internal_force<Shape>(P, ns.Pk.data(), LocalView(ns, r));
-  for (size_t k = 0; k < ns.cst.size(); ++k)
-    chain_internal_force(ns.cst[k], ns.ctr[k], LocalView(ns, r));
+    implicit_internal_force<Shape, D>(P, ns.Pk.data(), LocalView<D>(ns, r));
+  if constexpr (D == 2)
+    for (size_t k = 0; k < ns.cst.size(); ++k)
+      chain_internal_force(ns.cst[k], ns.ctr[k], LocalView<D>(ns, r));
   PetscCall(VecRestoreArray(ns.Rloc, &r));
   PetscCall(ParticlesRestoreView(ns.sim->parts, P));
   PetscCall(VecZeroEntries(R));
@@ -238,9 +254,9 @@ template <class Shape> PetscErrorCode Residual(NewtonSolver &ns, Vec U, Vec R) {
       if (mk[q] == 0.0) r[q] = ns.kref * u[q];
   } else {
     const PrescribedVelocity &pv = ns.sim->prescribed;
-    ns.reaction[0] = ns.reaction[1] = 0.0;
+    for (int d = 0; d < D; ++d) ns.reaction[d] = 0.0;
     for (PetscInt q = 0; q < n; ++q)
-      if (ns.pdof[q] >= 0) ns.reaction[q % DIM] -= pv.weight[ns.pdof[q]] * r[q];
+      if (ns.pdof[q] >= 0) ns.reaction[q % D] -= pv.weight[ns.pdof[q]] * r[q];
     for (PetscInt q = 0; q < n; ++q)
       if (mk[q] == 0.0) r[q] = ns.kref * (u[q] - ns.ubar[q]);
   }
@@ -252,12 +268,13 @@ template <class Shape> PetscErrorCode Residual(NewtonSolver &ns, Vec U, Vec R) {
 
 PetscErrorCode FormResidual(SNES, Vec U, Vec R, void *ctx) {
   NewtonSolver &ns = *static_cast<NewtonSolver *>(ctx);
+  const bool linear = ns.sim->set.shape == ShapeKind::Linear;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ev_residual, 0, 0, 0, 0));
-  if (ns.sim->set.shape == ShapeKind::Linear)
-    PetscCall(Residual<LinearShape>(ns, U, R));
+  if (ns.sim->set.dim == 3)
+    PetscCall(linear ? Residual<LinearShape, 3>(ns, U, R) : Residual<UGIMPShape, 3>(ns, U, R));
   else
-    PetscCall(Residual<UGIMPShape>(ns, U, R));
+    PetscCall(linear ? Residual<LinearShape, 2>(ns, U, R) : Residual<UGIMPShape, 2>(ns, U, R));
   PetscCall(PetscLogEventEnd(ev_residual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -265,42 +282,47 @@ PetscErrorCode FormResidual(SNES, Vec U, Vec R, void *ctx) {
 // Each particle's consistent stiffness at the trial state of U (with the reset grid's term in an
 // equilibrium step), gathered per node pair into NB (add_particle_blocks); then the membrane
 // chains' bar stiffness. NB's storage is ns.blocks.
-template <class Shape> PetscErrorCode ParticleBlocks(NewtonSolver &ns, Vec U, NodeBlocks &NB) {
-  constexpr int NN = Weights<Shape>::NN, ND = NN * DIM;
+template <class Shape, int D>
+PetscErrorCode ParticleBlocks(NewtonSolver &ns, Vec U, NodeBlocksT<D> &NB) {
+  constexpr int NN = Weights<Shape, D>::NN, ND = NN * D, NS = NStress<D>;
   Simulation &sim = *ns.sim;
+  const GridT<D> &g = sim.template grid_of<D>();
   ParticleView P;
-  Weights<Shape> W;
-  double A[DIM * DIM * DIM * DIM], K[ND * ND], H[NN][3];
-  const double gw[DIM] = {ns.lambda * sim.set.gdir[0], ns.lambda * sim.set.gdir[1]};
+  Weights<Shape, D> W;
+  double A[D * D * D * D], K[ND * ND], H[NN][NHess<D>], gw[D];
   PetscFunctionBeginUser;
+  Gravity<D>(sim, ns.lambda, gw);
   NB.w = ns.width;
-  const int nb = (2 * NB.w + 1) * (2 * NB.w + 1);
-  for (int d = 0; d < DIM; ++d) {
+  size_t nb = 1, nodes = 1; // blocks per node, ghosted nodes
+  for (int d = 0; d < D; ++d) {
     NB.gs[d] = ns.gs[d];
     NB.gm[d] = ns.gm[d];
+    nb *= static_cast<size_t>(2 * NB.w + 1);
+    nodes *= static_cast<size_t>(ns.gm[d]);
   }
-  ns.blocks.assign(static_cast<size_t>(ns.gm[0] * ns.gm[1]) * nb * DIM * DIM, 0.0);
+  ns.blocks.assign(nodes * nb * D * D, 0.0);
   NB.data = ns.blocks.data();
   PetscCall(ParticlesGetView(sim.parts, P));
-  PetscCall(TrialState<Shape>(ns, U, P));
+  PetscCall(TrialState<Shape, D>(ns, U, P));
   for (PetscInt p = 0; p < P.n; ++p) {
     const PetscInt mat = P.mat[p];
-    piola_tangent(*sim.model.mats[mat].model, &ns.G[p * DIM * DIM], P.stress + p * NSTRESS,
-                  &ns.snew[p * NSTRESS], P.F + p * DIM * DIM, P.eps_p[p], A,
-                  ns.eigen.empty() ? nullptr : &ns.eigen[3 * p]);
-    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, sim.grid.origin, sim.grid.h, W);
-    particle_stiffness<Shape>(W, P.vol[p], A, K);
+    piola_tangent<D>(*sim.model.mats[mat].model, &ns.G[p * D * D], P.stress + p * NS,
+                     &ns.snew[p * NS], P.F + p * D * D, P.eps_p[p], A,
+                     ns.eigen.empty() ? nullptr : &ns.eigen[3 * p]);
+    weights<Shape>(P.x + p * D, P.lp + p * D, g.origin, g.h, W);
+    particle_stiffness<Shape, D>(W, P.vol[p], A, K);
     if (ns.reset) {
-      weight_hessians<Shape>(P.x + p * DIM, P.lp + p * DIM, sim.grid.origin, sim.grid.h, H);
-      particle_reset_stiffness<Shape>(W, H, P.vol[p], &ns.G[p * DIM * DIM], &ns.snew[p * NSTRESS],
-                                      P.weight[p], gw, K);
+      weight_hessians<Shape, D>(P.x + p * D, P.lp + p * D, g.origin, g.h, H);
+      particle_reset_stiffness<Shape, D>(W, H, P.vol[p], &ns.G[p * D * D], &ns.snew[p * NS],
+                                         P.weight[p], gw, K);
     }
-    add_particle_blocks<Shape>(W, K, NB);
+    add_particle_blocks<Shape, D>(W, K, NB);
   }
   PetscCall(ParticlesRestoreView(sim.parts, P));
   int missed = 0;
-  for (size_t k = 0; k < ns.cst.size(); ++k)
-    missed += chain_stiffness(sim.chains[k], ns.cst[k], ns.ctr[k], NB);
+  if constexpr (D == 2)
+    for (size_t k = 0; k < ns.cst.size(); ++k)
+      missed += chain_stiffness(sim.chains[k], ns.cst[k], ns.ctr[k], NB);
   // the stencil width covers a chain whose neighbouring points lie within a cell of each other
   PetscCheck(missed == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB,
              "-solver newton: %d couplings of a membrane chain reach beyond the stencil width %d "
@@ -320,7 +342,7 @@ PetscErrorCode ProjectedChainCoupling(NewtonSolver &ns, Mat B) {
   const double *mk;
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(ns.maskL, &mk));
-  const NodalView ML = LocalView(ns, const_cast<double *>(mk));
+  const NodalView ML = LocalView<DIM>(ns, const_cast<double *>(mk));
   for (size_t k = 0; k < ns.cst.size(); ++k) {
     const ChainStencil &S = ns.cst[k];
     if (!S.project) continue;
@@ -347,64 +369,102 @@ PetscErrorCode ProjectedChainCoupling(NewtonSolver &ns, Mat B) {
   PetscFunctionReturn(0);
 }
 
+// Calls f(n, q) for the nodes of the box [lo, lo + size) (D of the three values used), x fastest:
+// n the node's D indices (n[2] = 0 in 2D), q its position in that order.
+template <int D, class F> void ForNodes(const PetscInt *lo, const PetscInt *size, F &&f) {
+  const PetscInt klo = D == 3 ? lo[2] : 0, khi = D == 3 ? lo[2] + size[2] : 1;
+  PetscInt q = 0;
+  for (PetscInt k = klo; k < khi; ++k)
+    for (PetscInt j = lo[1]; j < lo[1] + size[1]; ++j)
+      for (PetscInt i = lo[0]; i < lo[0] + size[0]; ++i) {
+        const PetscInt n[3] = {i, j, k};
+        f(n, q++);
+      }
+}
+
+// Node n (three indices, n[2] unused in 2D) of a nodal view, and the block of node n with its
+// neighbour n + dn.
+template <int D> double *NodeAt(const NodalViewT<D> &v, const PetscInt *n) {
+  if constexpr (D == 2)
+    return v.node(n[0], n[1]);
+  else
+    return v.node(n[0], n[1], n[2]);
+}
+template <int D> const double *BlockAt(const NodeBlocksT<D> &B, const PetscInt *n, const int *dn) {
+  if constexpr (D == 2)
+    return B.block(n[0], n[1], dn[0], dn[1]);
+  else
+    return B.block(n[0], n[1], n[2], dn[0], dn[1], dn[2]);
+}
+
 // NB into the matrix: one insertion per node row over its free dofs, the columns its free
 // neighbours' dofs (held and unsupported dofs have neither).
-PetscErrorCode InsertBlocks(NewtonSolver &ns, const NodeBlocks &NB, Mat B) {
-  const int nb = (2 * NB.w + 1) * (2 * NB.w + 1);
+template <int D> PetscErrorCode InsertBlocks(NewtonSolver &ns, const NodeBlocksT<D> &NB, Mat B) {
+  const int w = NB.w,
+            nb = D == 3 ? (2 * w + 1) * (2 * w + 1) * (2 * w + 1) : (2 * w + 1) * (2 * w + 1);
+  const int wz = D == 3 ? w : 0;
   const double *mk;
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(ns.maskL, &mk));
-  const NodalView M = LocalView(ns, const_cast<double *>(mk));
-  std::vector<MatStencil> rows(DIM), cols(static_cast<size_t>(nb) * DIM);
-  std::vector<double> vals(static_cast<size_t>(DIM) * nb * DIM);
-  std::vector<const double *> src(static_cast<size_t>(nb) * DIM);
-  std::vector<int> ra(DIM), cb(static_cast<size_t>(nb) * DIM);
-  for (PetscInt j = ns.gs[1]; j < ns.gs[1] + ns.gm[1]; ++j)
-    for (PetscInt i = ns.gs[0]; i < ns.gs[0] + ns.gm[0]; ++i) {
-      int nr = 0, nc = 0;
-      for (int a = 0; a < DIM; ++a)
-        if (M.node(i, j)[a] != 0.0) {
-          rows[nr] = MatStencil{0, j, i, a};
-          ra[nr++] = a;
-        }
-      if (nr == 0) continue;
-      bool any = false;
-      for (int dj = -NB.w; dj <= NB.w; ++dj)
-        for (int di = -NB.w; di <= NB.w; ++di) {
-          const PetscInt ii = i + di, jj = j + dj;
-          if (ii < ns.gs[0] || ii >= ns.gs[0] + ns.gm[0] || jj < ns.gs[1] ||
-              jj >= ns.gs[1] + ns.gm[1])
-            continue;
-          const double *b = NB.block(i, j, di, dj);
-          for (int c = 0; c < DIM; ++c)
-            if (M.node(ii, jj)[c] != 0.0) {
-              cols[nc] = MatStencil{0, jj, ii, c};
+  const NodalViewT<D> M = LocalView<D>(ns, const_cast<double *>(mk));
+  std::vector<MatStencil> rows(D), cols(static_cast<size_t>(nb) * D);
+  std::vector<double> vals(static_cast<size_t>(D) * nb * D);
+  std::vector<const double *> src(static_cast<size_t>(nb) * D);
+  std::vector<int> ra(D), cb(static_cast<size_t>(nb) * D);
+  PetscErrorCode ierr = 0;
+  ForNodes<D>(ns.gs, ns.gm, [&](const PetscInt *n, PetscInt) {
+    if (ierr) return;
+    int nr = 0, nc = 0;
+    const double *mn = NodeAt<D>(M, n);
+    for (int a = 0; a < D; ++a)
+      if (mn[a] != 0.0) {
+        rows[nr] = MatStencil{n[2], n[1], n[0], a};
+        ra[nr++] = a;
+      }
+    if (nr == 0) return;
+    bool any = false;
+    for (int dk = -wz; dk <= wz; ++dk)
+      for (int dj = -w; dj <= w; ++dj)
+        for (int di = -w; di <= w; ++di) {
+          const int dn[3] = {di, dj, dk};
+          const PetscInt nn[3] = {n[0] + di, n[1] + dj, n[2] + dk};
+          bool inside = true;
+          for (int d = 0; d < D; ++d)
+            inside = inside && nn[d] >= ns.gs[d] && nn[d] < ns.gs[d] + ns.gm[d];
+          if (!inside) continue;
+          const double *b = BlockAt<D>(NB, n, dn), *mm = NodeAt<D>(M, nn);
+          for (int c = 0; c < D; ++c)
+            if (mm[c] != 0.0) {
+              cols[nc] = MatStencil{nn[2], nn[1], nn[0], c};
               src[nc] = b;
               cb[nc++] = c;
-              for (int r = 0; r < nr; ++r) any = any || b[ra[r] * DIM + c] != 0.0;
+              for (int r = 0; r < nr; ++r) any = any || b[ra[r] * D + c] != 0.0;
             }
         }
-      if (!any) continue; // no particle of this rank couples this node
-      for (int r = 0; r < nr; ++r)
-        for (int c = 0; c < nc; ++c) vals[r * nc + c] = src[c][ra[r] * DIM + cb[c]];
-      PetscCall(MatSetValuesStencil(B, nr, rows.data(), nc, cols.data(), vals.data(), ADD_VALUES));
-    }
+    if (!any) return; // no particle of this rank couples this node
+    for (int r = 0; r < nr; ++r)
+      for (int c = 0; c < nc; ++c) vals[r * nc + c] = src[c][ra[r] * D + cb[c]];
+    ierr = MatSetValuesStencil(B, nr, rows.data(), nc, cols.data(), vals.data(), ADD_VALUES);
+  });
+  PetscCall(ierr);
   PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
   PetscFunctionReturn(0);
 }
 
 // kref on the diagonal of the owned dofs that are not free (held, prescribed, unsupported).
-PetscErrorCode HeldDiagonal(NewtonSolver &ns, Mat B) {
+template <int D> PetscErrorCode HeldDiagonal(NewtonSolver &ns, Mat B) {
   const double *mk;
+  PetscErrorCode ierr = 0;
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(ns.maskG, &mk));
-  for (PetscInt j = ns.s[1]; j < ns.s[1] + ns.m[1]; ++j)
-    for (PetscInt i = ns.s[0]; i < ns.s[0] + ns.m[0]; ++i)
-      for (int a = 0; a < DIM; ++a)
-        if (mk[((j - ns.s[1]) * ns.m[0] + (i - ns.s[0])) * DIM + a] == 0.0) {
-          MatStencil st{0, j, i, a};
-          PetscCall(MatSetValuesStencil(B, 1, &st, 1, &st, &ns.kref, ADD_VALUES));
-        }
+  ForNodes<D>(ns.s, ns.m, [&](const PetscInt *n, PetscInt q) {
+    for (int a = 0; a < D && !ierr; ++a)
+      if (mk[q * D + a] == 0.0) {
+        MatStencil st{n[2], n[1], n[0], a};
+        ierr = MatSetValuesStencil(B, 1, &st, 1, &st, &ns.kref, ADD_VALUES);
+      }
+  });
+  PetscCall(ierr);
   PetscCall(VecRestoreArrayRead(ns.maskG, &mk));
   PetscFunctionReturn(0);
 }
@@ -412,14 +472,14 @@ PetscErrorCode HeldDiagonal(NewtonSolver &ns, Mat B) {
 // The consistent tangent: each particle's stiffness gathered per node, the chains' couplings,
 // then one insertion per node row over its free, supported dofs; kref on the diagonal of the
 // others.
-template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
-  NodeBlocks NB;
+template <class Shape, int D> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
+  NodeBlocksT<D> NB;
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(B));
-  PetscCall(ParticleBlocks<Shape>(ns, U, NB));
-  PetscCall(ProjectedChainCoupling(ns, B));
-  PetscCall(InsertBlocks(ns, NB, B));
-  PetscCall(HeldDiagonal(ns, B));
+  PetscCall(ParticleBlocks<Shape, D>(ns, U, NB));
+  if constexpr (D == 2) PetscCall(ProjectedChainCoupling(ns, B));
+  PetscCall(InsertBlocks<D>(ns, NB, B));
+  PetscCall(HeldDiagonal<D>(ns, B));
   PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(0);
@@ -428,11 +488,12 @@ template <class Shape> PetscErrorCode Tangent(NewtonSolver &ns, Vec U, Mat B) {
 PetscErrorCode FormJacobian(SNES, Vec U, Mat Jac, Mat B, void *ctx) {
   NewtonSolver &ns = *static_cast<NewtonSolver *>(ctx);
   PetscFunctionBeginUser;
+  const bool linear = ns.sim->set.shape == ShapeKind::Linear;
   PetscCall(PetscLogEventBegin(ev_jacobian, 0, 0, 0, 0));
-  if (ns.sim->set.shape == ShapeKind::Linear)
-    PetscCall(Tangent<LinearShape>(ns, U, B));
+  if (ns.sim->set.dim == 3)
+    PetscCall(linear ? Tangent<LinearShape, 3>(ns, U, B) : Tangent<UGIMPShape, 3>(ns, U, B));
   else
-    PetscCall(Tangent<UGIMPShape>(ns, U, B));
+    PetscCall(linear ? Tangent<LinearShape, 2>(ns, U, B) : Tangent<UGIMPShape, 2>(ns, U, B));
   if (Jac != B) { // -snes_mf_operator and the like
     PetscCall(MatAssemblyBegin(Jac, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(Jac, MAT_FINAL_ASSEMBLY));
@@ -441,140 +502,170 @@ PetscErrorCode FormJacobian(SNES, Vec U, Mat Jac, Mat B, void *ctx) {
   PetscFunctionReturn(0);
 }
 
-// The entry of Simulation::prescribed that holds dof d of node (i, j), or -1.
-PetscInt PrescribedEntry(const Simulation &sim, PetscInt i, PetscInt j, int d) {
+// The grid's cells per direction (three values; 0 along z in 2D).
+template <int D> void GridCells(Simulation &sim, PetscInt ncell[3]) {
+  const GridT<D> &g = sim.template grid_of<D>();
+  for (int d = 0; d < 3; ++d) ncell[d] = d < D ? g.ncell[d] : 0;
+}
+
+// The entry of Simulation::prescribed that holds dof d of node n (D indices), or -1.
+template <int D> PetscInt PrescribedEntry(Simulation &sim, const PetscInt *n, int d) {
   const std::vector<PetscInt> &key = sim.prescribed.key;
-  if (key.empty() || i < 0 || j < 0 || i > sim.model.ncell[0] || j > sim.model.ncell[1]) return -1;
-  const PetscInt k = PrescribedKey(i, j, d, sim.model.ncell);
+  if (key.empty()) return -1;
+  PetscInt ncell[3];
+  GridCells<D>(sim, ncell);
+  for (int e = 0; e < D; ++e)
+    if (n[e] < 0 || n[e] > ncell[e]) return -1;
+  const PetscInt k = PrescribedKey<D>(n, d, ncell);
   const auto it = std::lower_bound(key.begin(), key.end(), k);
   return it != key.end() && *it == k ? static_cast<PetscInt>(it - key.begin()) : -1;
 }
 
 // The kinematic mask kinL: the free dofs (maskL) and the prescribed ones, whose du is imposed.
-PetscErrorCode KinematicMask(NewtonSolver &ns) {
+template <int D> PetscErrorCode KinematicMask(NewtonSolver &ns) {
   double *k;
   PetscFunctionBeginUser;
   PetscCall(VecCopy(ns.maskL, ns.kinL));
   if (ns.sim->prescribed.empty()) PetscFunctionReturn(0);
   PetscCall(VecGetArray(ns.kinL, &k));
-  for (PetscInt j = ns.gs[1]; j < ns.gs[1] + ns.gm[1]; ++j)
-    for (PetscInt i = ns.gs[0]; i < ns.gs[0] + ns.gm[0]; ++i)
-      for (int a = 0; a < DIM; ++a)
-        if (PrescribedEntry(*ns.sim, i, j, a) >= 0)
-          k[((j - ns.gs[1]) * ns.gm[0] + (i - ns.gs[0])) * DIM + a] = 1.0;
+  ForNodes<D>(ns.gs, ns.gm, [&](const PetscInt *n, PetscInt q) {
+    for (int a = 0; a < D; ++a)
+      if (PrescribedEntry<D>(*ns.sim, n, a) >= 0) k[q * D + a] = 1.0;
+  });
   PetscCall(VecRestoreArray(ns.kinL, &k));
   PetscFunctionReturn(0);
 }
 
+// The explicit P2G's external force at the current positions (gravity, tractions; in 2D the
+// chains' weight and end loads, and their mass as support, into their bodies' blocks).
+template <class Shape, int D>
+void UnitLoad(Simulation &sim, const ParticleView &P, const LoadT<D> &load, const GridViewT<D> &G) {
+  p2g<Shape, D>(P, load, G);
+  if (sim.traction_idx.empty()) return;
+  if constexpr (D == 3)
+    p2g_traction<Shape>(P, sim.model.loads3, sim.traction_idx, 1.0, G);
+  else
+    p2g_traction<Shape>(P, sim.model.loads, sim.traction_idx, 1.0, G);
+}
+
 // The unit load (explicit P2G's external force at the current positions) and the dof masks: a
 // dof is free when its node has support and neither a box face nor a prescribed support holds it.
-PetscErrorCode Loads(NewtonSolver &ns) {
+template <int D> PetscErrorCode Loads(NewtonSolver &ns) {
+  using Dof = GridDofT<D>;
   Simulation &sim = *ns.sim;
-  GridView G;
+  GridT<D> &g = sim.template grid_of<D>();
+  GridViewT<D> G;
   ParticleView P;
-  Load load; // factor 1
+  LoadT<D> load; // factor 1
   double *f, *mk;
   PetscFunctionBeginUser;
   for (int d = 0; d < DIM; ++d) load.gdir[d] = sim.set.gdir[d];
+  if constexpr (D == 3) load.gdir[2] = sim.set.gdir_z;
   PetscCall(ParticlesGetView(sim.parts, P));
-  PetscCall(GridGetLocal(sim.grid, true, G));
-  const bool tr = !sim.traction_idx.empty();
-  if (sim.set.shape == ShapeKind::Linear) {
-    p2g<LinearShape>(P, load, G);
-    if (tr) p2g_traction<LinearShape>(P, sim.model.loads, sim.traction_idx, 1.0, G);
-  } else {
-    p2g<UGIMPShape>(P, load, G);
-    if (tr) p2g_traction<UGIMPShape>(P, sim.model.loads, sim.traction_idx, 1.0, G);
-  }
-  // the chains' weight and end loads, and their mass (support), into their bodies' blocks
-  for (const Chain &c : sim.chains) p2g_chain(c, load, G, sim.grid);
-  PetscCall(GridRestoreLocal(sim.grid, G));
+  PetscCall(GridGetLocal(g, true, G));
+  if (sim.set.shape == ShapeKind::Linear)
+    UnitLoad<LinearShape, D>(sim, P, load, G);
+  else
+    UnitLoad<UGIMPShape, D>(sim, P, load, G);
+  if constexpr (D == 2)
+    for (const Chain &c : sim.chains) p2g_chain(c, load, G, g);
+  PetscCall(GridRestoreLocal(g, G));
   PetscCall(ParticlesRestoreView(sim.parts, P));
-  PetscCall(GridLocalToGlobalAdd(sim.grid));
-  PetscCall(GridGetGlobal(sim.grid, G));
+  PetscCall(GridLocalToGlobalAdd(g));
+  PetscCall(GridGetGlobal(g, G));
   // bonded bodies move as one: a node's mass and load are the sums over its bodies
   auto body_sum = [&](const double *node, int dof) {
     double v = 0;
-    for (int b = 0; b < G.nbody; ++b) v += node[b * GridDof::NDOF + dof];
+    for (int b = 0; b < G.nbody; ++b) v += node[b * Dof::NDOF + dof];
     return v;
   };
   double mmax = 0;
-  for (PetscInt j = ns.s[1]; j < ns.s[1] + ns.m[1]; ++j)
-    for (PetscInt i = ns.s[0]; i < ns.s[0] + ns.m[0]; ++i)
-      mmax = std::fmax(mmax, body_sum(G.node(i, j), GridDof::M));
+  ForNodes<D>(ns.s, ns.m, [&](const PetscInt *n, PetscInt) {
+    mmax = std::fmax(mmax, body_sum(G.node(n), Dof::M));
+  });
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &mmax, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
   PetscCall(VecGetArray(ns.fext, &f));
   PetscCall(VecGetArray(ns.maskG, &mk));
   const bool moving = !sim.prescribed.empty();
-  ns.pdof.assign(moving ? static_cast<size_t>(ns.m[0] * ns.m[1] * DIM) : 0, -1);
-  for (PetscInt j = ns.s[1]; j < ns.s[1] + ns.m[1]; ++j)
-    for (PetscInt i = ns.s[0]; i < ns.s[0] + ns.m[0]; ++i) {
-      const double *node = G.node(i, j);
-      const PetscInt q = ((j - ns.s[1]) * ns.m[0] + (i - ns.s[0])) * DIM;
-      bool held[DIM];
-      held_dofs(i, j, sim.model.ncell, sim.model.face, held);
-      const bool supported = body_sum(node, GridDof::M) > ns.small_cut * mmax;
-      for (int a = 0; a < DIM; ++a) {
-        f[q + a] = body_sum(node, GridDof::FEXT + a);
-        if (moving) ns.pdof[q + a] = PrescribedEntry(sim, i, j, a);
-        mk[q + a] = supported && !held[a] && !(moving && ns.pdof[q + a] >= 0) ? 1.0 : 0.0;
-      }
+  size_t owned = D;
+  for (int d = 0; d < D; ++d) owned *= static_cast<size_t>(ns.m[d]);
+  ns.pdof.assign(moving ? owned : 0, -1);
+  PetscInt ncell[3];
+  GridCells<D>(sim, ncell);
+  ForNodes<D>(ns.s, ns.m, [&](const PetscInt *n, PetscInt nq) {
+    const double *node = G.node(n);
+    const PetscInt q = nq * D;
+    bool held[D];
+    held_dofs<D>(n, ncell, sim.model.face, held);
+    const bool supported = body_sum(node, Dof::M) > ns.small_cut * mmax;
+    for (int a = 0; a < D; ++a) {
+      f[q + a] = body_sum(node, Dof::FEXT + a);
+      if (moving) ns.pdof[q + a] = PrescribedEntry<D>(sim, n, a);
+      mk[q + a] = supported && !held[a] && !(moving && ns.pdof[q + a] >= 0) ? 1.0 : 0.0;
     }
+  });
   PetscCall(VecRestoreArray(ns.maskG, &mk));
   PetscCall(VecRestoreArray(ns.fext, &f));
-  PetscCall(GridRestoreGlobal(sim.grid, G));
+  PetscCall(GridRestoreGlobal(g, G));
   PetscCall(VecSet(ns.maskL, 0.0)); // ghosts beyond the box stay 0: never free
   PetscCall(DMGlobalToLocal(ns.da, ns.maskG, INSERT_VALUES, ns.maskL));
-  PetscCall(KinematicMask(ns));
+  PetscCall(KinematicMask<D>(ns));
   PetscFunctionReturn(0);
 }
 
 // The converged increment into the particles: x += sum S_i du_i, F, V = det(F) V0, stress and
 // plastic strain (the materials' own update with dudx = G_m, the midpoint gradient), velocity 0;
 // migration if needed.
-template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
-  constexpr int NN = Weights<Shape>::NN, NS = Shape::NS;
+template <class Shape, int D> PetscErrorCode Commit(NewtonSolver &ns) {
+  constexpr int NN = Weights<Shape, D>::NN;
   Simulation &sim = *ns.sim;
   ParticleView P;
-  Weights<Shape> W;
+  Weights<Shape, D> W;
   const double *u, *mk;
   PetscFunctionBeginUser;
   PetscCall(ParticlesGetView(sim.parts, P));
-  PetscCall(TrialState<Shape>(ns, ns.U, P)); // G and F_new of the converged du; Uloc holds du
+  PetscCall(TrialState<Shape, D>(ns, ns.U, P)); // G and F_new of the converged du; Uloc holds du
   PetscCall(VecGetArrayRead(ns.Uloc, &u));
   PetscCall(VecGetArrayRead(ns.kinL, &mk));
-  const NodalView Uv = LocalView(ns, const_cast<double *>(u)),
-                  Mv = LocalView(ns, const_cast<double *>(mk));
-  const Grid &g = sim.grid;
-  const double hx = g.origin[0] + g.ncell[0] * g.h, hy = g.origin[1] + g.ncell[1] * g.h;
-  double bad[4] = {0, 0, 0, 0}; // count, pid, x, y
+  const NodalViewT<D> Uv = LocalView<D>(ns, const_cast<double *>(u)),
+                      Mv = LocalView<D>(ns, const_cast<double *>(mk));
+  const GridT<D> &g = sim.template grid_of<D>();
+  double hi[D];
+  for (int d = 0; d < D; ++d) hi[d] = g.origin[d] + g.ncell[d] * g.h;
+  double bad[5] = {0, 0, 0, 0, 0}; // count, pid, x, y, z
   PetscInt left = 0;
   for (PetscInt p = 0; p < P.n; ++p) {
-    weights<Shape>(P.x + p * DIM, P.lp + p * DIM, g.origin, g.h, W);
-    double dx[DIM] = {0, 0};
+    weights<Shape>(P.x + p * D, P.lp + p * D, g.origin, g.h, W);
+    double dx[D] = {};
     for (int k = 0; k < NN; ++k) {
-      const PetscInt i = W.base[0] + k % NS, j = W.base[1] + k / NS;
-      for (int a = 0; a < DIM; ++a) dx[a] += W.w[k] * Mv.node(i, j)[a] * Uv.node(i, j)[a];
+      const double *mn = Mv.node(W, k), *un = Uv.node(W, k);
+      for (int a = 0; a < D; ++a) dx[a] += W.w[k] * mn[a] * un[a];
     }
-    double *x = P.x + p * DIM, *F = P.F + p * DIM * DIM;
-    for (int a = 0; a < DIM; ++a) {
+    double *x = P.x + p * D, *F = P.F + p * D * D;
+    for (int a = 0; a < D; ++a) {
       x[a] += dx[a];
-      P.v[p * DIM + a] = 0.0;
+      P.v[p * D + a] = 0.0;
     }
-    for (int q = 0; q < DIM * DIM; ++q) F[q] = ns.Fnew[p * DIM * DIM + q];
-    const double J = F[0] * F[3] - F[1] * F[2];
+    for (int q = 0; q < D * D; ++q) F[q] = ns.Fnew[p * D * D + q];
+    double J, xs = x[0] + x[1];
+    if constexpr (D == 3) {
+      J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+          F[2] * (F[3] * F[7] - F[4] * F[6]);
+      xs += x[2];
+    } else
+      J = F[0] * F[3] - F[1] * F[2];
     P.vol[p] = J * P.vol0[p];
-    if (!(J > 0.0) || !std::isfinite(x[0] + x[1]) ||
-        !(x[0] >= g.origin[0] && x[0] < hx && x[1] >= g.origin[1] && x[1] < hy)) {
+    bool inside = true;
+    for (int d = 0; d < D; ++d) inside = inside && x[d] >= g.origin[d] && x[d] < hi[d];
+    if (!(J > 0.0) || !std::isfinite(xs) || !inside) {
       if (bad[0]++ == 0) {
         bad[1] = static_cast<double>(P.pid[p]);
-        bad[2] = x[0];
-        bad[3] = x[1];
+        for (int d = 0; d < D; ++d) bad[2 + d] = x[d];
       }
       continue;
     }
-    const PetscInt cell[DIM] = {static_cast<PetscInt>((x[0] - g.origin[0]) / g.h),
-                                static_cast<PetscInt>((x[1] - g.origin[1]) / g.h)};
+    PetscInt cell[D];
+    for (int d = 0; d < D; ++d) cell[d] = static_cast<PetscInt>((x[d] - g.origin[d]) / g.h);
     if (!g.owns_cell(cell)) ++left;
   }
   PetscCall(VecRestoreArrayRead(ns.kinL, &mk));
@@ -596,16 +687,24 @@ template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
   } loc = {bad[0], sim.rank}, glob;
   PetscCallMPI(MPI_Allreduce(&loc, &glob, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
   if (glob.v > 0) {
-    PetscCallMPI(MPI_Bcast(bad, 4, MPI_DOUBLE, glob.rank, sim.comm));
+    PetscCallMPI(MPI_Bcast(bad, 5, MPI_DOUBLE, glob.rank, sim.comm));
+    char where[96];
+    if (D == 3)
+      PetscCall(PetscSNPrintf(where, sizeof where, "(%g, %g, %g)", bad[2], bad[3], bad[4]));
+    else
+      PetscCall(PetscSNPrintf(where, sizeof where, "(%g, %g)", bad[2], bad[3]));
     SETERRQ(sim.comm, PETSC_ERR_NOT_CONVERGED,
             "-solver newton: load step %" PetscInt_FMT " (load factor %g) moved particle %.0f "
-            "off the grid or inverted it (x = (%g, %g) m). Raise -newton_load_steps (now "
+            "off the grid or inverted it (x = %s m). Raise -newton_load_steps (now "
             "%" PetscInt_FMT ") or enlarge the grid.",
-            ns.solved_steps + 1, ns.lambda, bad[1], bad[2], bad[3], ns.load_steps);
+            ns.solved_steps + 1, ns.lambda, bad[1], where, ns.load_steps);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &left, 1, MPIU_INT, MPI_SUM, sim.comm));
   if (left > 0) {
-    PetscCall(ParticlesMigrate(sim.parts));
+    if constexpr (D == 3)
+      PetscCall(ParticlesMigrate(sim.parts, sim.grid3));
+    else
+      PetscCall(ParticlesMigrate(sim.parts));
     PetscCall(SimulationIndexParticles(sim));
     ++sim.run.migrations;
   }
@@ -613,9 +712,11 @@ template <class Shape> PetscErrorCode Commit(NewtonSolver &ns) {
 }
 
 // The chains' stencils at the load step's start; every point must be mapped by one rank or pinned.
+// (Membrane chains are 2D: -dim 3 has none.)
 PetscErrorCode ChainStencils(NewtonSolver &ns) {
   Simulation &sim = *ns.sim;
   PetscFunctionBeginUser;
+  if (sim.set.dim == 3) PetscFunctionReturn(0);
   ns.cst.resize(sim.chains.size());
   ns.ctr.resize(sim.chains.size());
   size_t npts = 0;
@@ -633,7 +734,8 @@ PetscErrorCode ChainStencils(NewtonSolver &ns) {
     count[k] = chain_stencil(c, G, sim.grid, ns.cst[k]);
     expect[k] = c.n - (c.pin[0] ? 1 : 0) - (c.pin[1] ? 1 : 0);
     npts += static_cast<size_t>(c.n) * DIM;
-    if (ns.cst[k].project) chain_stencil_mask(ns.cst[k], LocalView(ns, const_cast<double *>(mk)));
+    if (ns.cst[k].project)
+      chain_stencil_mask(ns.cst[k], LocalView<DIM>(ns, const_cast<double *>(mk)));
   }
   PetscCall(VecRestoreArrayRead(ns.maskL, &mk));
   for (ChainStencil &S : ns.cst) // every rank needs every point's masked weights (columns)
@@ -714,7 +816,7 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   const double lambda = path.load(t1);
   PetscFunctionBeginUser;
   *rejected = false;
-  PetscCall(Loads(ns));
+  PetscCall(ns.sim->set.dim == 3 ? Loads<3>(ns) : Loads<2>(ns));
   PetscCall(ChainStencils(ns));
   ns.lambda = lambda;
   ns.release = path.release ? 1.0 - t1 : 0.0;
@@ -723,7 +825,10 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
   if (ns.shrink != 0) { // this step's share of the eigenstrain, per particle (3: xx yy zz)
     ParticleView P;
     PetscCall(ParticlesGetView(sim.parts, P));
-    shrinkage_increment<DIM>(P, sim.model.shrink, ns.shrink, ns.eigen);
+    if (sim.set.dim == 3)
+      shrinkage_increment<3>(P, sim.model.shrink, ns.shrink, ns.eigen);
+    else
+      shrinkage_increment<DIM>(P, sim.model.shrink, ns.shrink, ns.eigen);
     PetscCall(ParticlesRestoreView(sim.parts, P));
   }
   double atol = PETSC_DEFAULT;
@@ -769,10 +874,11 @@ PetscErrorCode LoadStep(NewtonSolver &ns, const LoadPath &path, double t0, doubl
     PetscFunctionReturn(0);
   }
   PetscCall(PetscLogEventBegin(ev_commit, 0, 0, 0, 0));
-  if (sim.set.shape == ShapeKind::Linear)
-    PetscCall(Commit<LinearShape>(ns));
+  const bool linear = sim.set.shape == ShapeKind::Linear;
+  if (sim.set.dim == 3)
+    PetscCall(linear ? Commit<LinearShape, 3>(ns) : Commit<UGIMPShape, 3>(ns));
   else
-    PetscCall(Commit<UGIMPShape>(ns));
+    PetscCall(linear ? Commit<LinearShape, 2>(ns) : Commit<UGIMPShape, 2>(ns));
   PetscCall(PetscLogEventEnd(ev_commit, 0, 0, 0, 0));
   ++ns.solved_steps;
   ++sim.run.step;
@@ -807,7 +913,7 @@ PetscErrorCode SupportReaction(NewtonSolver &ns) {
   Simulation &sim = *ns.sim;
   PetscFunctionBeginUser;
   if (sim.prescribed.empty()) PetscFunctionReturn(0);
-  PetscCall(Loads(ns));
+  PetscCall(ns.sim->set.dim == 3 ? Loads<3>(ns) : Loads<2>(ns));
   PetscCall(ChainStencils(ns));
   ns.lambda = 1.0;
   ns.release = 0.0;
@@ -815,14 +921,16 @@ PetscErrorCode SupportReaction(NewtonSolver &ns) {
   ns.reset = false;
   PetscCall(PrescribedIncrement(ns, 0.0));
   PetscCall(FormResidual(ns.snes, ns.U, ns.R, &ns));
-  PetscCallMPI(MPI_Allreduce(ns.reaction, sim.support_force, DIM, MPI_DOUBLE, MPI_SUM, sim.comm));
+  double force[3];
+  PetscCallMPI(MPI_Allreduce(ns.reaction, force, sim.set.dim, MPI_DOUBLE, MPI_SUM, sim.comm));
+  for (int d = 0; d < DIM; ++d) sim.support_force[d] = force[d]; // the report's x and y
   PetscFunctionReturn(0);
 }
 
 // A void stage's R0 (LoadPath): the residual at full load and du = 0 of the particles that remain.
 PetscErrorCode ReleaseStart(NewtonSolver &ns) {
   PetscFunctionBeginUser;
-  PetscCall(Loads(ns));
+  PetscCall(ns.sim->set.dim == 3 ? Loads<3>(ns) : Loads<2>(ns));
   PetscCall(ChainStencils(ns));
   ns.lambda = 1.0;
   ns.release = 0.0;
@@ -866,6 +974,11 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver & /*ns*/) {
   // a prescribed support under a membrane chain: the chains' projected columns do not take it
   PetscCheck(sim.prescribed.empty() || sim.chains.empty(), sim.comm, PETSC_ERR_SUP,
              "-solver newton does not support prescribed supports with membrane chains yet%s", fix);
+  // -dim 3: the sheets' contact and stiffness are not in the residual and tangent yet
+  PetscCheck(sim.sheets.empty(), sim.comm, PETSC_ERR_SUP,
+             "-solver newton does not solve 3D sheets yet (-dim 3 with a membrane, here sheet "
+             "%s)%s",
+             sim.sheets.empty() ? "" : sim.sheets[0].name.c_str(), fix);
   PetscCheck(!sim.set.dynamic, sim.comm, PETSC_ERR_SUP,
              "-solver newton is quasi-static: -dynamic needs -solver relaxation");
   PetscCheck(!sim.set.fbar, sim.comm, PETSC_ERR_SUP, "-solver newton does not support -fbar yet%s",
@@ -954,26 +1067,32 @@ PetscErrorCode ReadOptions(NewtonSolver &ns, Simulation &sim) {
   PetscFunctionReturn(0);
 }
 
-// The solve's DMDA: the explicit grid's nodes and partition, DIM dofs, a box stencil as wide as
-// the shape's support (uGIMP: 3 nodes per direction, so couplings reach 2 nodes; a chain couples
-// the nodes of neighbouring points up to a cell apart, one node farther); its matrix (not under
-// -help), its global numbering (global_dof) and the solver's vectors.
-PetscErrorCode CreateGrid(NewtonSolver &ns, Simulation &sim, bool help) {
-  PetscInt M, N, px, py;
-  const PetscInt *lx, *ly;
+// The solve's DMDA: the explicit grid's nodes and partition (2D or 3D, -dim), D dofs, a box
+// stencil as wide as the shape's support (uGIMP: 3 nodes per direction, so couplings reach 2
+// nodes; a chain couples the nodes of neighbouring points up to a cell apart, one node farther);
+// its matrix (not under -help), its global numbering (global_dof, 2D chains) and the solver's
+// vectors.
+template <int D> PetscErrorCode CreateGrid(NewtonSolver &ns, Simulation &sim, bool help) {
+  PetscInt M, N, Pz, px, py, pz;
+  const PetscInt *lx, *ly, *lz;
+  const DM gda = sim.template grid_of<D>().da;
   PetscFunctionBeginUser;
-  PetscCall(DMDAGetInfo(sim.grid.da, nullptr, &M, &N, nullptr, &px, &py, nullptr, nullptr, nullptr,
-                        nullptr, nullptr, nullptr, nullptr));
-  PetscCall(DMDAGetOwnershipRanges(sim.grid.da, &lx, &ly, nullptr));
+  PetscCall(DMDAGetInfo(gda, nullptr, &M, &N, &Pz, &px, &py, &pz, nullptr, nullptr, nullptr,
+                        nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(gda, &lx, &ly, &lz));
   PetscInt width = sim.set.shape == ShapeKind::Linear ? LinearShape::NS - 1 : UGIMPShape::NS - 1;
   if (!sim.chains.empty()) width = UGIMPShape::NS;
   ns.width = width;
-  PetscCall(DMDACreate2d(sim.comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX, M, N,
-                         px, py, DIM, width, lx, ly, &ns.da));
+  if constexpr (D == 3)
+    PetscCall(DMDACreate3d(sim.comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED,
+                           DMDA_STENCIL_BOX, M, N, Pz, px, py, pz, D, width, lx, ly, lz, &ns.da));
+  else
+    PetscCall(DMDACreate2d(sim.comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX, M,
+                           N, px, py, D, width, lx, ly, &ns.da));
   PetscCall(DMSetUp(ns.da));
-  PetscCall(DMDAGetCorners(ns.da, &ns.s[0], &ns.s[1], nullptr, &ns.m[0], &ns.m[1], nullptr));
+  PetscCall(DMDAGetCorners(ns.da, &ns.s[0], &ns.s[1], &ns.s[2], &ns.m[0], &ns.m[1], &ns.m[2]));
   PetscCall(
-      DMDAGetGhostCorners(ns.da, &ns.gs[0], &ns.gs[1], nullptr, &ns.gm[0], &ns.gm[1], nullptr));
+      DMDAGetGhostCorners(ns.da, &ns.gs[0], &ns.gs[1], &ns.gs[2], &ns.gm[0], &ns.gm[1], &ns.gm[2]));
   if (!help) PetscCall(DMCreateMatrix(ns.da, &ns.J)); // -help: the options only, no matrix
   bool project = false;
   for (const Chain &c : sim.chains) project = project || c.strain_projection;
@@ -1063,7 +1182,11 @@ PetscErrorCode NewtonSolver::setup(Simulation &sim) {
     PetscCall(PetscLogEventRegister("NewtonCommit", cls, &ev_commit));
   }
   for (const auto &m : sim.model.mats) kref = std::fmax(kref, m.model->wave_modulus());
-  PetscCall(CreateGrid(*this, sim, help));
+  // under -help the grid is the 2D one whatever -dim says (SimulationSetup): no solve follows
+  if (sim.set.dim == 3 && !help)
+    PetscCall(CreateGrid<3>(*this, sim, help));
+  else
+    PetscCall(CreateGrid<2>(*this, sim, help));
   PetscCall(CreateSNES(*this, sim));
   PetscFunctionReturn(0);
 }
