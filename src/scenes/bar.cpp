@@ -2,7 +2,9 @@
 // that pins u_y), traction t on the end x = L, no gravity. Static solution (docs/method.md,
 // section 2.1): sigma_xx = t, u_x = t (1 - nu^2) x / E, u_y = -nu (1 + nu) t y / E. Extruded
 // (-dim 3) between free z faces (-bc_zmin free -bc_zmax free) it is a bar in uniaxial stress:
-// u_x = t x / E, u_y = -nu t y / E, u_z = -nu t (z - z_0) / E.
+// u_x = t x / E, u_y = -nu t y / E, u_z = -nu t (z - z_0) / E; also with one z face on rollers
+// (a symmetry plane, z_0 there: -bc_zmin roller -bc_zmax free), which holds the rigid z
+// translation an implicit solve cannot leave free.
 //
 // Vibrating bar (docs/method.md, section 2.4), with -bar_initial_velocity v0 (and -bar_traction 0,
 // nu = 0, -bar_top_roller, -dynamic): fixed-free, v(x, 0) = v0 sin(beta x), beta = pi / (2L); exact
@@ -225,10 +227,11 @@ public:
     PetscCall(StaticResidual(sim, ShapeKind::Linear, &res_mpm));
     PetscCall(StaticResidual(sim, ShapeKind::UGIMP, &res_pmpm));
     const double tip = s[0] / s[2];
-    // -dim 3 with both z faces free: uniaxial stress, u_x = t x / E (plane strain: t (1 - nu^2)
-    // x / E, also when extruded between rollers)
-    const bool uniaxial = sim.set.dim == 3 && sim.model.face[ZMIN] == FaceBC::Free &&
-                          sim.model.face[ZMAX] == FaceBC::Free;
+    // -dim 3 with both z faces free, or one free and one on rollers: uniaxial stress,
+    // u_x = t x / E (plane strain: t (1 - nu^2) x / E, also when extruded between rollers)
+    const FaceBC zlo = sim.model.face[ZMIN], zhi = sim.model.face[ZMAX];
+    const bool uniaxial = sim.set.dim == 3 && (zlo == FaceBC::Free || zhi == FaceBC::Free) &&
+                          zlo != FaceBC::Fixed && zhi != FaceBC::Fixed;
     const double tip_exact = t_ * (uniaxial ? 1.0 : 1 - c.nu * c.nu) * (s[1] / s[2]) / c.E;
     json =
         (sim.set.dim == 3 ? std::string("\"state\": \"") +

@@ -264,9 +264,10 @@ public:
   PetscErrorCode support_displacement(Simulation &sim, PetscInt, std::vector<double> &du) override {
     PetscFunctionBeginUser;
     const PrescribedVelocity &pv = sim.prescribed;
+    const PetscInt D = sim.set.dim; // y is dof 1 of D per node (-dim 3: three)
     du.assign(pv.key.size(), 0.0);
     for (size_t k = 0; k < pv.key.size(); ++k)
-      if (pv.key[k] % DIM == 1) du[k] = -(target_ - d_) * pv.weight[k];
+      if (pv.key[k] % D == 1) du[k] = -(target_ - d_) * pv.weight[k];
     d0_ = d_;
     speed_ = 0;
     set_door_speed(sim);

@@ -29,8 +29,11 @@
 //  - A load step whose solve fails is halved (-newton_max_cuts in a row); one failing at the last
 //    halving ends the stage not converged (relaxation's capped stage: a collapse), never an
 //    answer.
-//  - Default linear solver: a direct LU by MUMPS (any rank count; PETSc's own LU is serial), the
-//    line search bt; every -snes_/-ksp_/-pc_ option overrides them.
+//  - Default linear solver: in 2D a direct LU by MUMPS (any rank count; PETSc's own LU is
+//    serial), in 3D GMRES with BoomerAMG (an LU's fill grows too fast: kIterativeRtol); the line
+//    search bt; every -snes_/-ksp_/-pc_ option overrides them.
+//  - -dim 3: the same solve on the 3D grid (every function below that takes a D); membrane sheets
+//    are refused (CheckSupported).
 #include "pmpm/util/options.hpp"
 #include "pmpm/model/solver.hpp"
 #include "pmpm/solvers/chain_implicit.hpp"
@@ -145,6 +148,12 @@ constexpr double kEquilibriumRtol = 0.1;
 // later (63 s against 55 s: its load steps near the limit need more, so they were halved more
 // often) and the footing at 1.05 q_u failed earlier.
 constexpr PetscInt kMaxIterations = 50;
+// -dim 3's default linear solver: GMRES preconditioned by BoomerAMG (pmpm's defaults below) to
+// this relative tolerance. A 3D LU fills in: on the quarter circular footing at h = B/8 (11,271
+// dofs, 24,576 particles) each MUMPS factorisation took 13.5 s (60 s with METIS ordering, 169 s
+// with AMF) against 0.6 s for a BoomerAMG solve; at 1e-8 the Newton iterations are those of the
+// LU (4 in the first load step, 14-15 linear iterations each), at 1e-6 also, with 10 each.
+constexpr double kIterativeRtol = 1e-8;
 
 // The solve's ghosted nodes, over the explicit grid of dimension D (D = 2, 3: the functions
 // below that take a D run the solve in that dimension, -dim).
@@ -945,6 +954,11 @@ PetscErrorCode ReleaseStart(NewtonSolver &ns) {
 PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver & /*ns*/) {
   const char *fix = "; use -solver relaxation";
   PetscFunctionBeginUser;
+  // -dim 3: the sheets' contact and stiffness are not in the residual and tangent yet
+  PetscCheck(sim.sheets.empty(), sim.comm, PETSC_ERR_SUP,
+             "-solver newton does not solve 3D sheets yet (-dim 3 with a membrane, here sheet "
+             "%s)%s",
+             sim.sheets.empty() ? "" : sim.sheets[0].name.c_str(), fix);
   // membrane chains: bonded on both faces, the bodies and the sheet then share one field
   for (const Chain &c : sim.chains)
     PetscCheck(c.top.type == FaceType::Bonded && c.bottom.type == FaceType::Bonded, sim.comm,
@@ -974,11 +988,20 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver & /*ns*/) {
   // a prescribed support under a membrane chain: the chains' projected columns do not take it
   PetscCheck(sim.prescribed.empty() || sim.chains.empty(), sim.comm, PETSC_ERR_SUP,
              "-solver newton does not support prescribed supports with membrane chains yet%s", fix);
-  // -dim 3: the sheets' contact and stiffness are not in the residual and tangent yet
-  PetscCheck(sim.sheets.empty(), sim.comm, PETSC_ERR_SUP,
-             "-solver newton does not solve 3D sheets yet (-dim 3 with a membrane, here sheet "
-             "%s)%s",
-             sim.sheets.empty() ? "" : sim.sheets[0].name.c_str(), fix);
+  // a direction no box face holds (and no support inside the box) is a rigid translation: the
+  // matrix is singular and every load step's linear solve fails, so say it before the run
+  const int D = static_cast<int>(sim.set.dim);
+  for (int d = 0; d < D && sim.prescribed.empty(); ++d) {
+    bool held = false;
+    for (int f = 0; f < 2 * D; ++f)
+      held = held || sim.model.face[f] == FaceBC::Fixed ||
+             (sim.model.face[f] == FaceBC::Roller && f / 2 == d);
+    PmpmCheckInput(held, sim.comm, PETSC_ERR_ARG_INCOMP,
+                   "-solver newton: no box face holds the %c direction, a rigid translation the "
+                   "implicit solve cannot fix (its matrix is singular): put -bc_%cmin or "
+                   "-bc_%cmax on roller (a symmetry plane) or fixed",
+                   "xyz"[d], "xyz"[d], "xyz"[d]);
+  }
   PetscCheck(!sim.set.dynamic, sim.comm, PETSC_ERR_SUP,
              "-solver newton is quasi-static: -dynamic needs -solver relaxation");
   PetscCheck(!sim.set.fbar, sim.comm, PETSC_ERR_SUP, "-solver newton does not support -fbar yet%s",
@@ -1007,14 +1030,16 @@ PetscErrorCode CheckSupported(Simulation &sim, NewtonSolver & /*ns*/) {
 // takes 25.9 s with them and 13.0 s with these (118 linear iterations against 75, each cheaper, and
 // a 2x cheaper setup); without aggressive coarsening 19.3 s, two levels of it 15.8 s, P_max 2
 // 15.9 s, strong threshold 0.5 16.0 s, nodal coarsening 26.8 s (bench/newton.py).
-PetscErrorCode BoomerAMGDefaults() {
+// hypre_default: BoomerAMG is the default preconditioner (3D), so the defaults apply unless
+// -pc_type names another.
+PetscErrorCode BoomerAMGDefaults(bool hypre_default) {
   char pc[64] = "", type[64] = "";
   PetscBool set;
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc, sizeof pc, nullptr));
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_hypre_type", type, sizeof type, nullptr));
-  if (std::strcmp(pc, "hypre") != 0 || (type[0] && std::strcmp(type, "boomeramg") != 0))
-    PetscFunctionReturn(0);
+  const bool hypre = pc[0] ? std::strcmp(pc, "hypre") == 0 : hypre_default;
+  if (!hypre || (type[0] && std::strcmp(type, "boomeramg") != 0)) PetscFunctionReturn(0);
   const char *const defaults[][2] = {{"-pc_hypre_boomeramg_coarsen_type", "HMIS"},
                                      {"-pc_hypre_boomeramg_interp_type", "ext+i"},
                                      {"-pc_hypre_boomeramg_P_max", "4"},
@@ -1121,7 +1146,8 @@ template <int D> PetscErrorCode CreateGrid(NewtonSolver &ns, Simulation &sim, bo
   PetscFunctionReturn(0);
 }
 
-// The SNES on the DMDA: Newton with the bt line search, MUMPS LU, pmpm's BoomerAMG defaults; then
+// The SNES on the DMDA: Newton with the bt line search, MUMPS LU (3D: GMRES and BoomerAMG), pmpm's
+// BoomerAMG defaults; then
 // every -snes_/-ksp_/-pc_ option, and which tolerances the user gave.
 PetscErrorCode CreateSNES(NewtonSolver &ns, Simulation &sim) {
   PetscBool set = PETSC_FALSE;
@@ -1142,11 +1168,19 @@ PetscErrorCode CreateSNES(NewtonSolver &ns, Simulation &sim) {
   KSP ksp;
   PC pc;
   PetscCall(SNESGetKSP(ns.snes, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
   PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  PetscCall(BoomerAMGDefaults());
+  const bool iterative = sim.set.dim == 3;
+  if (iterative) { // kIterativeRtol
+    PetscCall(KSPSetType(ksp, KSPGMRES));
+    PetscCall(KSPSetTolerances(ksp, kIterativeRtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+    PetscCall(PCSetType(pc, PCHYPRE));
+    PetscCall(PCHYPRESetType(pc, "boomeramg"));
+  } else {
+    PetscCall(KSPSetType(ksp, KSPPREONLY));
+    PetscCall(PCSetType(pc, PCLU));
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  }
+  PetscCall(BoomerAMGDefaults(iterative));
   PetscCall(SNESSetFromOptions(ns.snes));
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-snes_atol", &set));
   ns.atol_given = set;

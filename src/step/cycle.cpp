@@ -406,6 +406,7 @@ template <int D> PetscErrorCode StaticResidualIn(Simulation &sim, ShapeKind shap
   GridUpdateParamsT<D> gp; // dt = 0, no damping: only the force sums are wanted
   PetscFunctionBeginUser;
   for (int d = 0; d < DIM; ++d) load.gdir[d] = sim.set.gdir[d];
+  if constexpr (D == 3) load.gdir[2] = sim.set.gdir_z; // the 3D step's gravity (Step)
   for (int f = 0; f < 2 * D; ++f) gp.face[f] = sim.model.face[f];
   gp.prescribed = &sim.prescribed;
   PetscCall(ParticlesGetView(sim.parts, P));
