@@ -149,6 +149,23 @@ def compare_extruded(c, name, p2, p3, nz, length, unit):
     return x2, f2["position0"][parent]
 
 
+def uniaxial_bar(c, d, t=100.0, E=1e7, nu=0.3):
+    """The bar (options/bar.opts) in d, run in 3D with a free z face: the summary reports uniaxial
+    stress, its tip displacement is t x / E within 1e-4 and the least-squares slopes of u_y in y
+    and u_z in z are -nu t / E within 1e-4 (the state is uniform, so only the solver's
+    tolerance is left; plane strain is 9.9 % and 30 % away)."""
+    import numpy as np
+    ru = summary(d)["results"]
+    c.check("bar: uniaxial stress reported", ru.get("state") == "uniaxial stress")
+    c.le("uniaxial bar: tip displacement against t x / E", ru["tip_displacement_error_rel"], 1e-4)
+    _, f = particles(d, ("position", "position0"))
+    u, x0 = f["position"] - f["position0"], f["position0"]
+    for axis, name in ((1, "y"), (2, "z")):
+        slope = np.polyfit(x0[:, axis], u[:, axis], 1)[0]
+        c.le(f"uniaxial bar: du_{name}/d{name} against -nu t / E", abs(slope / (-nu * t / E) - 1),
+             1e-4)
+
+
 def degradation_stages(c, what, d, rows, strain, tol):
     """Stages 1 and 2 of a uniform-degradation run in d (stages.csv rows): the top row of waste
     settles by y (1 - exp(-strain)) of its height before the stage within tol (relative), the
