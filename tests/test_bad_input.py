@@ -130,6 +130,10 @@ cases = [
     ("particles needing more than -memory_limit", ["-options_file", "options/landfill.opts",
                                                    "-cell_size", "0.00025", "-memory_limit",
                                                    "0.06"], "-memory_limit"),
+    # the same footing fits 0.2 GiB under relaxation (0.06 GiB measured): Newton's matrix does not
+    ("Newton's matrix needing more than -memory_limit",
+     ["-options_file", "options/footing.opts", "-fbar", "0", "-footing_pressures", "30000",
+      "-cell_size", "0.015625", "-solver", "newton", "-memory_limit", "0.2"], "Newton's matrix"),
     ("negative memory limit", ["-options_file", "options/bar.opts", "-memory_limit", "-1"],
      "-memory_limit"),
     ("process grid finer than the grid", ["-options_file", "options/bar.opts",

@@ -66,8 +66,8 @@ PetscErrorCode CompareWithNodes(Simulation &sim, const MemoryCheck &m, double ne
   PetscCallMPI(MPI_Allreduce(&loc, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
   PetscCallMPI(MPI_Bcast(v, 3, MPI_DOUBLE, worst.rank, sim.comm));
   if (worst.ratio > 1) {
-    // memory goes as 1 / h^2: the cell size that fits (with 10 % to spare)
-    const double h = sim.set.h * std::sqrt(1.1 * worst.ratio);
+    // memory goes as 1 / h^dim: the cell size that fits (with 10 % to spare)
+    const double h = sim.set.h * std::pow(1.1 * worst.ratio, 1.0 / sim.set.dim);
     // bad input (exit code 1), refused before any allocation: not PETSC_ERR_MEM
     SETERRQ(sim.comm, PETSC_ERR_ARG_OUTOFRANGE,
             "-cell_size %g needs about %.3g GiB (%s) on a node running %d rank%s, which has "
@@ -139,13 +139,37 @@ namespace {
 double GridBytesPerNode(int nd, bool iface) {
   return 2.0 * 8 * nd + kGridBytesPerNode + (iface ? 2.0 * 8 * GridDof::NDOF : 0.0);
 }
+
+// -solver newton on a rank with `owned` and `ghosted` nodes of the D-dimensional grid: per owned
+// node the matrix (D rows of D (2w + 1)^D entries, a value and a column index each; w the stencil
+// width, newton.cpp's CreateGrid) and the default preconditioner in multiples of it: MUMPS's LU in
+// 2D (9x) and BoomerAMG in 3D (2x); per ghosted node the particles' stiffness gathered per node
+// pair before insertion ((2w + 1)^D blocks of D^2 doubles). Measured against relaxation's peak
+// RSS: the footing at B/16 and B/64 (2,009 and 31,073 nodes) 11.6 and 13.4 KB per node, estimated
+// 12.8; the quarter circular footing at B/8 (3,757 owned, 7,497 ghosted nodes) 59 KB per owned
+// node, estimated 58.5. Another -pc_type changes the preconditioner's term (a 3D LU fills in:
+// 162 KB per node measured there).
+double NewtonBytes(const Simulation &sim, int D, double owned, double ghosted) {
+  if (sim.set.solver != "newton") return 0.0;
+  const int w = !sim.model.chain_specs.empty() ? 3 : sim.set.shape == ShapeKind::Linear ? 1 : 2;
+  const double nb =
+      D == 3 ? (2.0 * w + 1) * (2 * w + 1) * (2 * w + 1) : (2.0 * w + 1) * (2 * w + 1);
+  const double matrix = D * (D * nb) * (8.0 + sizeof(PetscInt));
+  const double blocks = nb * D * D * 8.0;
+  return owned * matrix * (D == 3 ? 3.0 : 10.0) + ghosted * blocks;
+}
+const char *NewtonWhat(const Simulation &sim, const char *what, const char *with) {
+  return sim.set.solver == "newton" ? with : what;
+}
 } // namespace
 
 PetscErrorCode CheckMemoryGrid(Simulation &sim, const MemoryCheck &m, int nd, bool iface) {
   PetscFunctionBeginUser;
   const double nodes = (double)(sim.model.ncell[0] + 1) * (double)(sim.model.ncell[1] + 1);
-  PetscCall(CompareWithNodes(
-      sim, m, kRankBaseBytes + nodes / sim.size * GridBytesPerNode(nd, iface), "the grid alone"));
+  const double mine = nodes / sim.size, per_node = GridBytesPerNode(nd, iface);
+  PetscCall(CompareWithNodes(sim, m,
+                             kRankBaseBytes + mine * per_node + NewtonBytes(sim, 2, mine, mine),
+                             NewtonWhat(sim, "the grid alone", "the grid and Newton's matrix")));
   PetscFunctionReturn(0);
 }
 
@@ -154,8 +178,10 @@ PetscErrorCode CheckMemoryParticles(Simulation &sim, const MemoryCheck &m, Petsc
   const double nodes = (double)sim.grid.gm[0] * sim.grid.gm[1];
   const double need = kRankBaseBytes +
                       nodes * GridBytesPerNode(sim.grid.nd, sim.iface_grid.active) +
+                      NewtonBytes(sim, 2, (double)sim.grid.m[0] * sim.grid.m[1], nodes) +
                       (double)nlocal * (kParticleBytes + (sim.parts.affine ? DIM * DIM * 8 : 0));
-  PetscCall(CompareWithNodes(sim, m, need, "grid and particles"));
+  PetscCall(CompareWithNodes(
+      sim, m, need, NewtonWhat(sim, "grid and particles", "grid, particles and Newton's matrix")));
   PetscFunctionReturn(0);
 }
 
@@ -177,14 +203,20 @@ PetscErrorCode CheckMemoryExtruded(Simulation &sim, const MemoryCheck &m, PetscI
   if (nlocal == 0) {
     const double nodes =
         (double)(sim.model.ncell[0] + 1) * (double)(sim.model.ncell[1] + 1) * (double)(nz + 1);
-    PetscCall(CompareWithNodes(sim, m, kRankBaseBytes + nodes / sim.size * per_node,
-                               "the 3D grid alone"));
+    PetscCall(CompareWithNodes(
+        sim, m,
+        kRankBaseBytes + nodes / sim.size * per_node +
+            NewtonBytes(sim, 3, nodes / sim.size, nodes / sim.size),
+        NewtonWhat(sim, "the 3D grid alone", "the 3D grid and Newton's matrix alone")));
   } else {
     const GridT<3> &g = sim.grid3;
     const double nodes = (double)g.gm[0] * g.gm[1] * g.gm[2];
     PetscCall(CompareWithNodes(sim, m,
-                               kRankBaseBytes + nodes * per_node + (double)nlocal * kParticleBytes3,
-                               "the 3D grid and particles"));
+                               kRankBaseBytes + nodes * per_node +
+                                   (double)nlocal * kParticleBytes3 +
+                                   NewtonBytes(sim, 3, (double)g.m[0] * g.m[1] * g.m[2], nodes),
+                               NewtonWhat(sim, "the 3D grid and particles",
+                                          "the 3D grid, particles and Newton's matrix")));
   }
   PetscFunctionReturn(0);
 }
