@@ -452,12 +452,7 @@ g2p_deform(const ParticleView &P, PetscInt p, double *x, const double *vg, const
         t += (i == k ? 1.0 + du[i * D + k] : du[i * D + k]) * F0[k * D + j];
       F[i * D + j] = t;
     }
-  double J;
-  if constexpr (D == 2)
-    J = Axi ? (F[0] * F[3] - F[1] * F[2]) * Fhoop : F[0] * F[3] - F[1] * F[2];
-  else
-    J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
-        F[2] * (F[3] * F[7] - F[4] * F[6]);
+  const double J = Axi ? det_of<D>(F) * Fhoop : det_of<D>(F);
   P.vol[p] = J * P.vol0[p];
   return J;
 }

@@ -170,11 +170,10 @@ template <int D> NodalViewT<D> LocalView(const NewtonSolver &ns, double *data) {
   return v;
 }
 
-// gw = lambda g in D dimensions (in 3D gravity's z component is -dim 3's turn of the plane's).
+// gw = lambda g in D dimensions (GravityDirection, cycle.hpp).
 template <int D> void Gravity(const Simulation &sim, double lambda, double gw[D]) {
-  gw[0] = lambda * sim.set.gdir[0];
-  gw[1] = lambda * sim.set.gdir[1];
-  if constexpr (D == 3) gw[2] = lambda * sim.set.gdir_z;
+  GravityDirection<D>(sim, gw);
+  for (int d = 0; d < D; ++d) gw[d] *= lambda;
 }
 
 // du (ghosted) to the trial state of every particle: G, F_new, trial stress and plastic strain
@@ -545,18 +544,6 @@ template <int D> PetscErrorCode KinematicMask(NewtonSolver &ns) {
   PetscFunctionReturn(0);
 }
 
-// The explicit P2G's external force at the current positions (gravity, tractions; in 2D the
-// chains' weight and end loads, and their mass as support, into their bodies' blocks).
-template <class Shape, int D>
-void UnitLoad(Simulation &sim, const ParticleView &P, const LoadT<D> &load, const GridViewT<D> &G) {
-  p2g<Shape, D>(P, load, G);
-  if (sim.traction_idx.empty()) return;
-  if constexpr (D == 3)
-    p2g_traction<Shape>(P, sim.model.loads3, sim.traction_idx, 1.0, G);
-  else
-    p2g_traction<Shape>(P, sim.model.loads, sim.traction_idx, 1.0, G);
-}
-
 // The unit load (explicit P2G's external force at the current positions) and the dof masks: a
 // dof is free when its node has support and neither a box face nor a prescribed support holds it.
 template <int D> PetscErrorCode Loads(NewtonSolver &ns) {
@@ -568,14 +555,14 @@ template <int D> PetscErrorCode Loads(NewtonSolver &ns) {
   LoadT<D> load; // factor 1
   double *f, *mk;
   PetscFunctionBeginUser;
-  for (int d = 0; d < DIM; ++d) load.gdir[d] = sim.set.gdir[d];
-  if constexpr (D == 3) load.gdir[2] = sim.set.gdir_z;
+  GravityDirection<D>(sim, load.gdir);
   PetscCall(ParticlesGetView(sim.parts, P));
   PetscCall(GridGetLocal(g, true, G));
   if (sim.set.shape == ShapeKind::Linear)
-    UnitLoad<LinearShape, D>(sim, P, load, G);
+    StaticForces<LinearShape, D>(sim, P, load, G);
   else
-    UnitLoad<UGIMPShape, D>(sim, P, load, G);
+    StaticForces<UGIMPShape, D>(sim, P, load, G);
+  // the chains' weight and end loads, and their mass (support), into their bodies' blocks
   if constexpr (D == 2)
     for (const Chain &c : sim.chains) p2g_chain(c, load, G, g);
   PetscCall(GridRestoreLocal(g, G));
@@ -656,13 +643,9 @@ template <class Shape, int D> PetscErrorCode Commit(NewtonSolver &ns) {
       P.v[p * D + a] = 0.0;
     }
     for (int q = 0; q < D * D; ++q) F[q] = ns.Fnew[p * D * D + q];
-    double J, xs = x[0] + x[1];
-    if constexpr (D == 3) {
-      J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
-          F[2] * (F[3] * F[7] - F[4] * F[6]);
-      xs += x[2];
-    } else
-      J = F[0] * F[3] - F[1] * F[2];
+    const double J = det_of<D>(F);
+    double xs = x[0] + x[1];
+    if constexpr (D == 3) xs += x[2];
     P.vol[p] = J * P.vol0[p];
     bool inside = true;
     for (int d = 0; d < D; ++d) inside = inside && x[d] >= g.origin[d] && x[d] < hi[d];
@@ -709,14 +692,7 @@ template <class Shape, int D> PetscErrorCode Commit(NewtonSolver &ns) {
             ns.solved_steps + 1, ns.lambda, bad[1], where, ns.load_steps);
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &left, 1, MPIU_INT, MPI_SUM, sim.comm));
-  if (left > 0) {
-    if constexpr (D == 3)
-      PetscCall(ParticlesMigrate(sim.parts, sim.grid3));
-    else
-      PetscCall(ParticlesMigrate(sim.parts));
-    PetscCall(SimulationIndexParticles(sim));
-    ++sim.run.migrations;
-  }
+  if (left > 0) PetscCall(Migrate(sim));
   PetscFunctionReturn(0);
 }
 

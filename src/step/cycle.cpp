@@ -282,18 +282,6 @@ PetscErrorCode BadParticle(Simulation &sim, const StepReport &rep, int who) {
               : "");
 }
 
-// 8. Migrate only when a particle left its rank's cells.
-PetscErrorCode Migrate(Simulation &sim) {
-  PetscFunctionBeginUser;
-  PmpmLogEventScope(step_events.migrate);
-  if (sim.set.dim == 3)
-    PetscCall(ParticlesMigrate(sim.parts, sim.grid3));
-  else
-    PetscCall(ParticlesMigrate(sim.parts));
-  PetscCall(SimulationIndexParticles(sim));
-  ++sim.run.migrations;
-  PetscFunctionReturn(0);
-}
 // Phases 0-6 in dimension D, the shape chosen at compile time.
 template <int D>
 PetscErrorCode StepPhases(StepStateT<D> &S, const FireMix &fire, const ActiveHooks &h) {
@@ -385,18 +373,6 @@ PetscErrorCode Step(Simulation &sim, const Load &load, double dt, const FireMix 
 }
 
 namespace {
-// P2G of the whole load with one shape: the internal and external forces (and the tractions).
-template <class Shape, int D>
-void StaticForces(Simulation &sim, const ParticleView &P, const LoadT<D> &load,
-                  const GridViewT<D> &G) {
-  p2g<Shape>(P, load, G);
-  if (sim.traction_idx.empty()) return;
-  if constexpr (D == 3)
-    p2g_traction<Shape>(P, sim.model.loads3, sim.traction_idx, load.factor, G);
-  else
-    p2g_traction<Shape>(P, sim.model.loads, sim.traction_idx, load.factor, G);
-}
-
 template <int D> PetscErrorCode StaticResidualIn(Simulation &sim, ShapeKind shape, double *ratio) {
   GridT<D> &g = sim.grid_of<D>();
   GridViewT<D> G;
@@ -405,8 +381,7 @@ template <int D> PetscErrorCode StaticResidualIn(Simulation &sim, ShapeKind shap
   GridStatsT<D> st;
   GridUpdateParamsT<D> gp; // dt = 0, no damping: only the force sums are wanted
   PetscFunctionBeginUser;
-  for (int d = 0; d < DIM; ++d) load.gdir[d] = sim.set.gdir[d];
-  if constexpr (D == 3) load.gdir[2] = sim.set.gdir_z; // the 3D step's gravity (Step)
+  GravityDirection<D>(sim, load.gdir);
   for (int f = 0; f < 2 * D; ++f) gp.face[f] = sim.model.face[f];
   gp.prescribed = &sim.prescribed;
   PetscCall(ParticlesGetView(sim.parts, P));
@@ -459,6 +434,19 @@ PetscErrorCode InitialWaveSpeed(Simulation &sim, double *max_speed) {
   for (const Chain &ch : sim.chains) c = std::fmax(c, ch.wave_speed());
   for (const Sheet &s : sim.sheets) c = std::fmax(c, s.wave_speed());
   PetscCallMPI(MPI_Allreduce(&c, max_speed, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
+  PetscFunctionReturn(0);
+}
+
+// 8. Migrate only when a particle left its rank's cells (cycle.hpp).
+PetscErrorCode Migrate(Simulation &sim) {
+  PetscFunctionBeginUser;
+  PmpmLogEventScope(step_events.migrate);
+  if (sim.set.dim == 3)
+    PetscCall(ParticlesMigrate(sim.parts, sim.grid3));
+  else
+    PetscCall(ParticlesMigrate(sim.parts));
+  PetscCall(SimulationIndexParticles(sim));
+  ++sim.run.migrations;
   PetscFunctionReturn(0);
 }
 

@@ -20,6 +20,15 @@ inline constexpr const char *FaceBCNames[] = {"free", "roller", "fixed", "FaceBC
 enum Face { XMIN = 0, XMAX = 1, YMIN = 2, YMAX = 3, ZMIN = 4, ZMAX = 5 };
 
 // Loads at the current step: the ramp factor multiplies gravity and tractions alike.
+// det F of a row-major D x D F (2D: the in-plane block's): a particle's volume ratio J.
+template <int D> inline double det_of(const double *F) {
+  if constexpr (D == 2)
+    return F[0] * F[3] - F[1] * F[2];
+  else
+    return F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+           F[2] * (F[3] * F[7] - F[4] * F[6]);
+}
+
 template <int D> struct LoadT {
   double factor = 1.0;
   double gdir[D] = {0.0, -1.0}; // unit direction of gravity (3D: set it; z is up there)
