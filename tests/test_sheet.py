@@ -27,7 +27,12 @@ leave sheets.h5 bit for bit, and a restart from step 2,000 ends at the same step
 plastic state is checkpointed). On 1 rank the elastoplastic law (plane-stress von Mises on the
 forces): never yielding it is the linear sheet (1e-12; measured 3.5e-14); yielding (sigma_y t =
 1,500 N/m, H t = 1e4 N/m) it converges, sags more (1.60 against 1.42 m), and every triangle lies
-within its hardened yield surface (1e-9; measured 4.6e-16).
+within its hardened yield surface (1e-9; measured 4.6e-16). On 2 and 4 ranks each rank computes
+only the triangles near its cells (src/step/sheets.cpp): the yielding sheet at h = 0.5 m on a grid
+cut in y (1 x 2 x 1, 1 x 2 x 2), whose sag crosses the cut so that triangles change ranks and take
+their plastic state from another (asserted to happen), equals one rank's to 1e-10 (measured
+4e-16 in positions, 8e-13 in plastic strains); on 2 ranks a checkpoint at step 3,000 (which takes
+the triangles whole) and a restart from it end on the uninterrupted run to 1e-10 (measured 0).
 """
 import subprocess
 import sys
@@ -164,6 +169,25 @@ if np_ > 1:
     r1 = summary(o)["results"]
     for k in ("sag", "strain_centre", "strain_rim", "peak_strain_major"):
         rel(c, f"{k}: {np_} ranks against 1", res[1.0][k], r1[k], 1e-8 * abs(r1[k]))
+    # an elastoplastic sheet at h = 0.5 m whose sag (3 cells) crosses the ranks' boundary in y
+    # (the grid split 1 x 2 x 1, on 4 ranks 1 x 2 x 2): a rank computes only the triangles at the
+    # points whose blocks reach its nodes, and a triangle that comes to a rank takes its plastic
+    # state from one that computed it (src/step/sheets.cpp; skipping that moved the sag by
+    # 4e-4 of it at h = 1 m with a narrower set)
+    plastic = ["-options_file", "options/sheet.opts", "-mat_membrane_law", "elastoplastic",
+               "-mat_membrane_hardening", "1e6", "-mat_membrane_yield_stress", "1.5e5"]
+    split = ["-cell_size", "0.5", "-da_processors_x", "1", "-da_processors_y", "2",
+             "-da_processors_z", str(np_ // 2)]
+    run(exe, 1, plastic + ["-cell_size", "0.5"], out / "plastic_h05")
+    _, log = run(exe, np_, plastic + split + ["-info", ":sys"], out / "plastic_split")
+    shared = sum(l.startswith("[0]") and "plastic state shared" in l for l in log.splitlines())
+    c.check(f"elastoplastic, split in y on {np_} ranks: triangles changed ranks (state shared)",
+            shared > 0, f"({shared} times)")
+    pa, ps = sheet_arrays(out / "plastic_h05"), sheet_arrays(out / "plastic_split")
+    for k in ("position", "triangle_plastic_strain", "triangle_tension_major"):
+        d, scale = np.abs(ps[k] - pa[k]).max(), np.abs(pa[k]).max()
+        c.check(f"elastoplastic, split in y on {np_} ranks: {k} within 1e-10 of 1 rank's",
+                d <= 1e-10 * scale, f"({d / scale:.1e})")
 if np_ == 2:
     # checkpoints (every 2,000 of the 6,421 steps) change nothing; a restart from step 2,000
     # ends bit for bit on 1 rank and within the ranks' round-off on 2
@@ -198,4 +222,15 @@ if np_ == 2:
     pa, pr = sheet_arrays(out / "plastic"), sheet_arrays(out / "plastic_restart")
     c.check("elastoplastic: a restart from step 3,000 ends bit for bit (plastic strains too)",
             all(np.array_equal(pa[k], v) for k, v in pr.items()))
+    # on 2 ranks (each computes its half of the triangles), a checkpoint between steps (which
+    # takes them whole) and a restart from it end where the uninterrupted run ends
+    run(exe, 2, plastic, out / "plastic_np2")
+    run(exe, 2, plastic + ["-checkpoint_every", "3000"], out / "plastic_np2_ck")
+    run(exe, 2, plastic + ["-restart", str(out / "plastic_np2_ck" / "checkpoint_3000.h5")],
+        out / "plastic_np2_restart")
+    p2, pr = sheet_arrays(out / "plastic_np2"), sheet_arrays(out / "plastic_np2_restart")
+    for k in ("position", "triangle_plastic_strain"):
+        d, scale = np.abs(pr[k] - p2[k]).max(), np.abs(p2[k]).max()
+        c.check(f"elastoplastic on 2 ranks: a restart from step 3,000, {k} within 1e-10",
+                d <= 1e-10 * scale, f"({d / scale:.1e})")
 c.done()

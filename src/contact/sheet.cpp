@@ -215,6 +215,8 @@ void sheet_reference(Sheet &s) {
   s.N.assign(2 * static_cast<size_t>(s.nt), 0.0);
   s.state.assign(s.nt, SheetState::Taut);
   s.tens.assign(3 * static_cast<size_t>(s.nt), 0.0);
+  s.P.assign(6 * static_cast<size_t>(s.nt), 0.0);
+  s.fresh.assign(s.nt, 1); // the plastic state (none yet) is every triangle's latest
   if (s.law == SheetLaw::Elastoplastic) {
     s.bp.assign(3 * static_cast<size_t>(s.nt), 0.0);
     s.alpha.assign(s.nt, 0.0);
@@ -251,8 +253,14 @@ Stretches PrincipalStretches(const Mat32 &F) {
 } // namespace
 
 namespace {
-// Triangle t's corner forces -A0 P g_a added to its points.
-void AddCornerForces(Sheet &s, int t, const Mat32 &P) {
+using RowMat32 = Eigen::Matrix<double, 3, 2, Eigen::RowMajor>;
+
+// Triangle t's corner forces -A0 P g_a added to its points, P its stored tension (TriangleState).
+void AddCornerForces(Sheet &s, int t) {
+  const double *pt = &s.P[6 * static_cast<size_t>(t)];
+  if (pt[0] == 0.0 && pt[1] == 0.0 && pt[2] == 0.0 && pt[3] == 0.0 && pt[4] == 0.0 && pt[5] == 0.0)
+    return; // slack: nothing
+  const Mat32 P = Eigen::Map<const RowMat32>(pt);
   const Eigen::Map<const Eigen::Matrix<double, 2, 2, Eigen::RowMajor>> Di(
       &s.dinv[4 * static_cast<size_t>(t)]);
   const Eigen::Vector2d g1 = Di.row(0).transpose(), g2 = Di.row(1).transpose(), g0 = -(g1 + g2);
@@ -263,51 +271,87 @@ void AddCornerForces(Sheet &s, int t, const Mat32 &P) {
     for (int d = 0; d < 3; ++d) s.f[3 * v[a] + d] += fa[d];
   }
 }
+
+// Triangle t's strains, forces' tensor, principal tensions, state and the first Piola-Kirchhoff
+// tension P (s.P) from the current positions; an elastoplastic triangle's plastic state advances.
+void TriangleState(Sheet &s, int t) {
+  Eigen::Map<RowMat32> Pt(&s.P[6 * static_cast<size_t>(t)]);
+  const Mat32 F = Deformation(s, t);
+  const Stretches st = PrincipalStretches(F);
+  const double l1 = st.l1, l2 = st.l2;
+  const Eigen::Vector2d &n1 = st.n1, &n2 = st.n2;
+  const Eigen::Matrix2d B = (l1 - 1.0) * n1 * n1.transpose() + (l2 - 1.0) * n2 * n2.transpose();
+  double *bt = &s.biot[3 * static_cast<size_t>(t)], *tt = &s.tens[3 * static_cast<size_t>(t)];
+  bt[0] = B(0, 0);
+  bt[1] = B(1, 1);
+  bt[2] = B(0, 1);
+  s.b[2 * t] = l1 - 1.0;
+  s.b[2 * t + 1] = l2 - 1.0;
+  if (s.law == SheetLaw::Elastoplastic) { // the forces from the plastic state (not coaxial)
+    sheet_plastic_forces(s.J, s.nu, s.yield_N, s.hardening, bt, &s.bp[3 * static_cast<size_t>(t)],
+                         s.alpha[t], tt);
+    Eigen::Matrix2d Tm;
+    Tm << tt[0], tt[2], tt[2], tt[1];
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
+    eig.computeDirect(Tm);
+    s.N[2 * t] = eig.eigenvalues()[1];
+    s.N[2 * t + 1] = eig.eigenvalues()[0];
+    s.state[t] = SheetState::Taut;
+    // P = R T with R = F U^-1 the rotation
+    const Eigen::Matrix2d Uinv = n1 * n1.transpose() / l1 + n2 * n2.transpose() / l2;
+    const Mat32 P = F * Uinv * Tm;
+    Pt = P;
+    return;
+  }
+  const SheetTensions T = sheet_tensions(s.law, s.J, s.nu, l1 - 1.0, l2 - 1.0);
+  s.N[2 * t] = T.N1;
+  s.N[2 * t + 1] = T.N2;
+  s.state[t] = T.state;
+  const Eigen::Matrix2d Tm = T.N1 * n1 * n1.transpose() + T.N2 * n2 * n2.transpose();
+  tt[0] = Tm(0, 0);
+  tt[1] = Tm(1, 1);
+  tt[2] = Tm(0, 1);
+  if (T.N1 == 0.0 && T.N2 == 0.0) {
+    Pt.setZero();
+    return;
+  }
+  // P = F U^-1 T_B (the Biot tension rotated into place); l_i > 0 wherever a tension acts
+  const Mat32 P =
+      F * (T.N1 / l1 * n1 * n1.transpose() + (T.N2 != 0.0 ? T.N2 / l2 : 0.0) * n2 * n2.transpose());
+  Pt = P;
+}
+
+// The per-triangle arrays sized (a sheet set up by hand, as the unit tests do, may not have P).
+void SizeTriangleArrays(Sheet &s) {
+  s.P.resize(6 * static_cast<size_t>(s.nt));
+  s.fresh.resize(s.nt);
+}
 } // namespace
 
 void sheet_update_forces(Sheet &s) {
+  SizeTriangleArrays(s);
+  for (int t = 0; t < s.nt; ++t) TriangleState(s, t);
   std::fill(s.f.begin(), s.f.end(), 0.0);
-  for (int t = 0; t < s.nt; ++t) {
-    const Mat32 F = Deformation(s, t);
-    const Stretches st = PrincipalStretches(F);
-    const double l1 = st.l1, l2 = st.l2;
-    const Eigen::Vector2d &n1 = st.n1, &n2 = st.n2;
-    const Eigen::Matrix2d B = (l1 - 1.0) * n1 * n1.transpose() + (l2 - 1.0) * n2 * n2.transpose();
-    double *bt = &s.biot[3 * static_cast<size_t>(t)], *tt = &s.tens[3 * static_cast<size_t>(t)];
-    bt[0] = B(0, 0);
-    bt[1] = B(1, 1);
-    bt[2] = B(0, 1);
-    s.b[2 * t] = l1 - 1.0;
-    s.b[2 * t + 1] = l2 - 1.0;
-    if (s.law == SheetLaw::Elastoplastic) { // the forces from the plastic state (not coaxial)
-      sheet_plastic_forces(s.J, s.nu, s.yield_N, s.hardening, bt, &s.bp[3 * static_cast<size_t>(t)],
-                           s.alpha[t], tt);
-      Eigen::Matrix2d Tm;
-      Tm << tt[0], tt[2], tt[2], tt[1];
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;
-      eig.computeDirect(Tm);
-      s.N[2 * t] = eig.eigenvalues()[1];
-      s.N[2 * t + 1] = eig.eigenvalues()[0];
-      s.state[t] = SheetState::Taut;
-      // P = R T with R = F U^-1 the rotation
-      const Eigen::Matrix2d Uinv = n1 * n1.transpose() / l1 + n2 * n2.transpose() / l2;
-      AddCornerForces(s, t, F * Uinv * Tm);
-      continue;
-    }
-    const SheetTensions T = sheet_tensions(s.law, s.J, s.nu, l1 - 1.0, l2 - 1.0);
-    s.N[2 * t] = T.N1;
-    s.N[2 * t + 1] = T.N2;
-    s.state[t] = T.state;
-    const Eigen::Matrix2d Tm = T.N1 * n1 * n1.transpose() + T.N2 * n2 * n2.transpose();
-    tt[0] = Tm(0, 0);
-    tt[1] = Tm(1, 1);
-    tt[2] = Tm(0, 1);
-    if (T.N1 == 0.0 && T.N2 == 0.0) continue;
-    // P = F U^-1 T_B (the Biot tension rotated into place); l_i > 0 wherever a tension acts
-    AddCornerForces(s, t,
-                    F * (T.N1 / l1 * n1 * n1.transpose() +
-                         (T.N2 != 0.0 ? T.N2 / l2 : 0.0) * n2 * n2.transpose()));
+  for (int t = 0; t < s.nt; ++t) AddCornerForces(s, t);
+  std::fill(s.fresh.begin(), s.fresh.end(), 1);
+}
+
+void sheet_update_forces(Sheet &s, const std::vector<int> &tris) {
+  SizeTriangleArrays(s);
+  std::fill(s.fresh.begin(), s.fresh.end(), 0);
+  for (const int t : tris) {
+    TriangleState(s, t);
+    s.fresh[t] = 1;
   }
+  std::fill(s.f.begin(), s.f.end(), 0.0);
+  for (const int t : tris) AddCornerForces(s, t);
+}
+
+void sheet_sum_forces(Sheet &s) {
+  SizeTriangleArrays(s);
+  std::fill(s.f.begin(), s.f.end(), 0.0);
+  for (int t = 0; t < s.nt; ++t) AddCornerForces(s, t);
+  std::fill(s.fresh.begin(), s.fresh.end(), 1);
 }
 
 double sheet_energy(const Sheet &s) {
@@ -327,22 +371,35 @@ double sheet_energy(const Sheet &s) {
   return U;
 }
 
-void sheet_normals(Sheet &s) {
-  s.nrm.assign(3 * static_cast<size_t>(s.n), 0.0);
-  for (int t = 0; t < s.nt; ++t) {
-    const int *v = &s.tri[3 * static_cast<size_t>(t)];
-    const Eigen::Map<const Eigen::Vector3d> x0(&s.x[3 * v[0]]), x1(&s.x[3 * v[1]]),
-        x2(&s.x[3 * v[2]]);
-    Eigen::Vector3d n = (x1 - x0).cross(x2 - x0); // twice the area times the unit normal
-    if (n[1] < 0) n = -n;                         // pointing up (+y): the lattice's order varies
-    for (int a = 0; a < 3; ++a)
-      for (int d = 0; d < 3; ++d) s.nrm[3 * v[a] + d] += n[d];
-  }
+namespace {
+void AddTriangleNormal(Sheet &s, int t) {
+  const int *v = &s.tri[3 * static_cast<size_t>(t)];
+  const Eigen::Map<const Eigen::Vector3d> x0(&s.x[3 * v[0]]), x1(&s.x[3 * v[1]]),
+      x2(&s.x[3 * v[2]]);
+  Eigen::Vector3d n = (x1 - x0).cross(x2 - x0); // twice the area times the unit normal
+  if (n[1] < 0) n = -n;                         // pointing up (+y): the lattice's order varies
+  for (int a = 0; a < 3; ++a)
+    for (int d = 0; d < 3; ++d) s.nrm[3 * v[a] + d] += n[d];
+}
+void NormaliseNormals(Sheet &s) {
   for (int i = 0; i < s.n; ++i) {
     double *n = &s.nrm[3 * static_cast<size_t>(i)];
     const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int d = 0; d < 3; ++d) n[d] = l > 0 ? n[d] / l : (d == 1 ? 1.0 : 0.0);
   }
+}
+} // namespace
+
+void sheet_normals(Sheet &s) {
+  s.nrm.assign(3 * static_cast<size_t>(s.n), 0.0);
+  for (int t = 0; t < s.nt; ++t) AddTriangleNormal(s, t);
+  NormaliseNormals(s);
+}
+
+void sheet_normals(Sheet &s, const std::vector<int> &tris) {
+  s.nrm.assign(3 * static_cast<size_t>(s.n), 0.0);
+  for (const int t : tris) AddTriangleNormal(s, t);
+  NormaliseNormals(s);
 }
 
 SheetDiscStrains sheet_disc_strains(const Sheet &s, const double c[3], double R, double dr) {

@@ -331,6 +331,7 @@ PetscErrorCode RelaxationSolver::Checkpoint(Simulation &sim, const Progress &pr,
   PetscFunctionBeginUser;
   if (s.checkpoint_every > 0 && sim.run.step % s.checkpoint_every == 0 && k < s.max_steps) {
     sim.run.stage_seconds = MPI_Wtime() - pr.t_start;
+    PetscCall(SheetsComplete(sim)); // each rank computed its own triangles
     PetscCall(CheckpointWrite(sim, true));
   }
   PetscFunctionReturn(0);

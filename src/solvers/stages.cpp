@@ -30,6 +30,7 @@ PetscErrorCode RunStages(Simulation &sim) {
       PetscCall(sim.scene->begin_stage(sim, k));
     }
     PetscCall(sim.solver->solve_stage(sim)); // clears sim.resume
+    PetscCall(SheetsComplete(sim));          // whole for the scene's record and the outputs
     sim.run.all_converged = sim.run.all_converged && sim.run.converged;
     PetscCall(sim.scene->end_stage(sim, k));
     // a stage that stopped short of -tol, unless the scene ended it (a collapse is its answer)

@@ -344,6 +344,8 @@ PetscErrorCode LogRegister() {
   PetscCall(PetscLogEventRegister("MUSLRemap", cls, &e.musl));
   PetscCall(PetscLogEventRegister("Interface", cls, &e.iface));
   PetscCall(PetscLogEventRegister("Chain", cls, &e.chain));
+  PetscCall(PetscLogEventRegister("SheetShare", cls, &e.sheet_share));
+  PetscCall(PetscLogEventRegister("SheetForces", cls, &e.sheet_forces));
   PetscCall(PetscLogEventRegister("Contact", cls, &e.contact));
   PetscCall(PetscLogEventRegister("FBar", cls, &e.fbar));
   PetscCall(PetscLogEventRegister("CpgimpSupport", cls, &e.support));

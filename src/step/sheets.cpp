@@ -1,6 +1,11 @@
 // 3D sheets (sheet.hpp) in the explicit step under -dim 3: their points' mass, momentum and
 // forces into the grid's nodes, the points moved by the owner of their cell and shared by one
-// allreduce, their forces from the new positions, and their share of the step's report. Points
+// allreduce, their forces from the new positions, and their share of the step's report. Every
+// rank holds the whole sheet's points; each computes only the triangles at the points whose
+// blocks reach its nodes (LocalTriangles), so the triangles' cost divides among the ranks, and
+// SheetsComplete makes them whole where the whole sheet is read (a stage's record, the outputs,
+// a checkpoint). An elastoplastic triangle that comes to a rank takes its plastic state from one
+// that computed it (RefreshPlasticState). Points
 // may be pinned, or held in some components (rollers: the extruded catenary's free edges). A
 // sheet alone on the grid (the sheet and extruded catenary scenes) is the grid's only body; a
 // sheet between bodies (an extruded scene's chain, extrude.cpp) is a body of its own, and the
@@ -8,6 +13,7 @@
 #include "pmpm/contact/sheet_contact.hpp"
 #include "pmpm/step/step_hooks.hpp"
 #include <cmath>
+#include <limits>
 
 namespace pmpm {
 
@@ -20,8 +26,8 @@ bool Active(const Simulation &sim, const Load &) {
 }
 
 // The cell holding x (may lie outside the box); a point on the box's upper face (an extruded
-// strip's edge at z = depth) is in the last cell.
-void CellOf(const GridViewT<3> &G, const double *x, PetscInt c[3]) {
+// strip's edge at z = depth) is in the last cell. G: the grid or a view of it.
+template <class Grid> void CellOf(const Grid &G, const double *x, PetscInt c[3]) {
   for (int d = 0; d < 3; ++d) {
     c[d] = static_cast<PetscInt>(std::floor((x[d] - G.origin[d]) / G.h));
     if (c[d] == G.ncell[d] && x[d] == G.origin[d] + G.ncell[d] * G.h) c[d] = G.ncell[d] - 1;
@@ -198,6 +204,63 @@ void G2PSheet(const Sheet &s, const GridT<3> &g, const GridViewT<3> &G, double d
   }
 }
 
+// The triangles this rank computes, increasing: those with a corner whose block can reach its
+// ghosted nodes. Those points' forces (P2GSheet: the points it owns) and normals (their blocks,
+// sheet_point_weights: also sheet_friction_capacity's points in the ghost layers) are then
+// exact. A block's first node is the point's cell c or c - 1 (its half-size is under half a cell)
+// and it spans three nodes, so only cells gs <= c <= gs + gm - 2 reach the ghosted nodes.
+void LocalTriangles(const Sheet &s, const GridT<3> &g, std::vector<char> &near,
+                    std::vector<int> &tris) {
+  near.assign(s.n, 0);
+  for (int i = 0; i < s.n; ++i) {
+    PetscInt c[3];
+    CellOf(g, &s.x[3 * static_cast<size_t>(i)], c);
+    bool in = true;
+    for (int d = 0; d < 3; ++d) in = in && c[d] >= g.gs[d] && c[d] <= g.gs[d] + g.gm[d] - 2;
+    near[i] = in || g.owns_cell(c);
+  }
+  tris.clear();
+  for (int t = 0; t < s.nt; ++t) {
+    const int *v = &s.tri[3 * static_cast<size_t>(t)];
+    if (near[v[0]] || near[v[1]] || near[v[2]]) tris.push_back(t);
+  }
+}
+
+// An elastoplastic triangle's plastic state is history: a rank that computes a triangle it did
+// not compute at the last step (a point crossed into its cells) takes the state from a rank that
+// did (the lowest), before the step's update. Every triangle was computed by some rank (every
+// point has an owner), so the state taken is the last step's. Two allreduces over the triangles,
+// only at the steps where some rank's set changes.
+PetscErrorCode RefreshPlasticState(Sheet &s, const std::vector<int> &tris, MPI_Comm comm) {
+  PetscFunctionBeginUser;
+  int stale = 0;
+  for (const int t : tris) stale |= !s.fresh[t];
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &stale, 1, MPI_INT, MPI_LOR, comm));
+  if (!stale) PetscFunctionReturn(0);
+  PetscCall(PetscInfo(nullptr, "sheet %s: plastic state shared (a rank's triangles changed)\n",
+                      s.name.c_str()));
+  PetscMPIInt rank;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  std::vector<int> from(s.nt);
+  for (int t = 0; t < s.nt; ++t) from[t] = s.fresh[t] ? rank : std::numeric_limits<int>::max();
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, from.data(), s.nt, MPI_INT, MPI_MIN, comm));
+  std::vector<double> state(4 * static_cast<size_t>(s.nt), 0.0);
+  for (int t = 0; t < s.nt; ++t) {
+    PetscCheck(from[t] != std::numeric_limits<int>::max(), comm, PETSC_ERR_PLIB,
+               "sheet %s: triangle %d was computed by no rank at the last step", s.name.c_str(), t);
+    if (from[t] != rank) continue;
+    for (int k = 0; k < 3; ++k) state[4 * static_cast<size_t>(t) + k] = s.bp[3 * t + k];
+    state[4 * static_cast<size_t>(t) + 3] = s.alpha[t];
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, state.data(), static_cast<int>(state.size()), MPI_DOUBLE,
+                             MPI_SUM, comm));
+  for (int t = 0; t < s.nt; ++t) {
+    for (int k = 0; k < 3; ++k) s.bp[3 * t + k] = state[4 * static_cast<size_t>(t) + k];
+    s.alpha[t] = state[4 * static_cast<size_t>(t) + 3];
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode GridToPoints(StepStateT<3> &S) {
   Simulation &sim = S.sim;
   GridT<3> &g = sim.grid3;
@@ -209,8 +272,11 @@ PetscErrorCode GridToPoints(StepStateT<3> &S) {
     PetscCall(GridWithLocal(g, false, [&](const GridViewT<3> &G) {
       G2PSheet(s, g, G, S.dt, pic, sim.model.iface.tail_share, buf);
     }));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE,
-                               MPI_SUM, sim.comm));
+    {
+      PmpmLogEventScope(step_events.sheet_share);
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE,
+                                 MPI_SUM, sim.comm));
+    }
     const int pw = PackWidth(s);
     int owners = 0;
     for (int i = 0; i < s.n; ++i) {
@@ -239,8 +305,17 @@ PetscErrorCode GridToPoints(StepStateT<3> &S) {
                "Instability at step %" PetscInt_FMT ": the sheet has %d of its %d points off the "
                "grid. Enlarge the grid or reduce -cfl (now %g).",
                sim.run.step, s.n - owners, s.n, sim.set.cfl);
-    sheet_update_forces(s);
-    sheet_normals(s);
+    PmpmLogEventScope(step_events.sheet_forces);
+    if (sim.size == 1) {
+      sheet_update_forces(s);
+      sheet_normals(s);
+      continue;
+    }
+    std::vector<int> &tris = sim.scratch.sheet_tris;
+    LocalTriangles(s, g, sim.scratch.sheet_near, tris);
+    if (s.law == SheetLaw::Elastoplastic) PetscCall(RefreshPlasticState(s, tris, sim.comm));
+    sheet_update_forces(s, tris);
+    sheet_normals(s, tris);
   }
   PetscFunctionReturn(0);
 }
@@ -300,6 +375,59 @@ PetscErrorCode Reductions(StepState &S) {
   PetscFunctionReturn(0);
 }
 } // namespace
+
+namespace {
+// A triangle's arrays (sheet.hpp), packed for SheetsComplete: strains, principal strains and
+// tensions, the forces' tensor, P, the state, and an elastoplastic sheet's plastic state.
+constexpr int kRecord = 3 + 2 + 2 + 3 + 6 + 1 + 4;
+template <class F> void TriangleRecord(Sheet &s, int t, F &&f) {
+  const size_t T = static_cast<size_t>(t);
+  for (int k = 0; k < 3; ++k) f(s.biot[3 * T + k]);
+  for (int k = 0; k < 2; ++k) f(s.b[2 * T + k]);
+  for (int k = 0; k < 2; ++k) f(s.N[2 * T + k]);
+  for (int k = 0; k < 3; ++k) f(s.tens[3 * T + k]);
+  for (int k = 0; k < 6; ++k) f(s.P[6 * T + k]);
+  double state = static_cast<double>(s.state[t]);
+  f(state);
+  s.state[t] = static_cast<SheetState>(static_cast<int>(state));
+  double none = 0;
+  const bool plastic = s.law == SheetLaw::Elastoplastic;
+  for (int k = 0; k < 3; ++k) f(plastic ? s.bp[3 * T + k] : none);
+  f(plastic ? s.alpha[t] : none);
+}
+} // namespace
+
+PetscErrorCode SheetsComplete(Simulation &sim) {
+  PetscFunctionBeginUser;
+  if (sim.size == 1) PetscFunctionReturn(0);
+  for (Sheet &s : sim.sheets) {
+    int stale = 0;
+    for (int t = 0; t < s.nt; ++t) stale |= !s.fresh[t];
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &stale, 1, MPI_INT, MPI_LOR, sim.comm));
+    if (!stale) continue;
+    // each triangle's arrays from the lowest rank that computed it at the last step
+    std::vector<int> from(s.nt);
+    for (int t = 0; t < s.nt; ++t)
+      from[t] = s.fresh[t] ? sim.rank : std::numeric_limits<int>::max();
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, from.data(), s.nt, MPI_INT, MPI_MIN, sim.comm));
+    std::vector<double> buf(kRecord * static_cast<size_t>(s.nt), 0.0);
+    for (int t = 0; t < s.nt; ++t) {
+      if (from[t] != sim.rank) continue;
+      double *b = &buf[kRecord * static_cast<size_t>(t)];
+      TriangleRecord(s, t, [&](double &v) { *b++ = v; });
+    }
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE,
+                               MPI_SUM, sim.comm));
+    for (int t = 0; t < s.nt; ++t) {
+      if (s.fresh[t]) continue;
+      const double *b = &buf[kRecord * static_cast<size_t>(t)];
+      TriangleRecord(s, t, [&](double &v) { v = *b++; });
+    }
+    sheet_sum_forces(s);
+    sheet_normals(s);
+  }
+  PetscFunctionReturn(0);
+}
 
 // The sheets' forces and weight on the 3D grid, for the static residual (cycle.cpp).
 void p2g_sheets(const Simulation &sim, const LoadT<3> &load, const GridViewT<3> &G) {

@@ -9,6 +9,8 @@
 //  3. forces = -grad energy by central differences on a randomly deformed disc, for the linear
 //     law and for the tension-field law in a state with wrinkled triangles (step 1e-7, tolerance
 //     1e-6 of the largest force: truncation (1e-7)^2 of the curvature, round-off 1e-16 / 1e-7);
+//  2d. a partial update (the triangles one rank computes) equals the whole sheet's at the points
+//     whose triangles it lists, bit for bit, and leaves the other triangles alone;
 //  4. a flat circular sheet clamped at its rim under its own weight (Foppl-Hencky), relaxed with
 //     kinetic damping: at q a / (E t) = 1e-4 (slopes about 0.03, where the small-slope theory
 //     holds) the centre deflection is 0.653 a (q a / E t)^(1/3) for nu = 0.3 (Fichter 1997)
@@ -307,6 +309,64 @@ int main() {
     const std::vector<double> f0 = s.f, bp0 = s.bp;
     pmpm::sheet_update_forces(s);
     CHECK(s.f == f0 && s.bp == bp0);
+  }
+
+  // 2d. a partial update (one rank's triangles under MPI, src/step/sheets.cpp): listing the
+  //     triangles at some points gives those points the whole sheet's forces and normals bit for
+  //     bit, computes only the listed triangles (the others' plastic state untouched, not fresh),
+  //     and sheet_sum_forces over the completed arrays gives every point's whole-sheet force
+  {
+    Sheet s;
+    const double c[3] = {0, 0, 0};
+    s.law = SheetLaw::Elastoplastic;
+    s.J = J;
+    s.nu = nu;
+    s.yield_N = 0.002 * J;
+    s.hardening = 0.1 * J;
+    pmpm::sheet_disc(1.0, 0.25, c, s);
+    pmpm_test::Lcg rng(11);
+    for (int i = 0; i < s.n; ++i) {
+      const double *X = &s.x0[3 * i];
+      s.x[3 * i] = 1.02 * X[0] + rng.uniform(-2e-3, 2e-3);
+      s.x[3 * i + 1] = 0.1 * X[0] * X[0] + rng.uniform(-2e-3, 2e-3);
+      s.x[3 * i + 2] = 1.01 * X[2] + rng.uniform(-2e-3, 2e-3);
+    }
+    Sheet whole = s;
+    pmpm::sheet_update_forces(whole);
+    pmpm::sheet_normals(whole);
+    std::vector<char> mine(s.n, 0); // the points at x > 0.2: "this rank's"
+    for (int i = 0; i < s.n; ++i) mine[i] = s.x0[3 * i] > 0.2;
+    std::vector<int> tris;
+    for (int t = 0; t < s.nt; ++t) {
+      const int *v = &s.tri[3 * t];
+      if (mine[v[0]] || mine[v[1]] || mine[v[2]]) tris.push_back(t);
+    }
+    CHECK(tris.size() > 10 && static_cast<int>(tris.size()) < s.nt - 10);
+    pmpm::sheet_update_forces(s, tris);
+    pmpm::sheet_normals(s, tris);
+    bool same = true;
+    for (int i = 0; i < s.n; ++i)
+      for (int d = 0; d < 3 && mine[i]; ++d)
+        same = same && s.f[3 * i + d] == whole.f[3 * i + d] &&
+               s.nrm[3 * i + d] == whole.nrm[3 * i + d];
+    CHECK(same);
+    int yielded = 0, fresh = 0, untouched = 0;
+    for (int t = 0; t < s.nt; ++t) {
+      yielded += whole.alpha[t] > 0;
+      fresh += s.fresh[t];
+      untouched += !s.fresh[t] && s.alpha[t] == 0.0 && s.N[2 * t] == 0.0;
+    }
+    CHECK(yielded > 10); // the plastic state matters here
+    CHECK(fresh == static_cast<int>(tris.size()) && untouched == s.nt - fresh);
+    // complete the others as SheetsComplete does (their arrays from where they were computed)
+    Sheet done = s;
+    for (int t = 0; t < s.nt; ++t) {
+      if (done.fresh[t]) continue;
+      for (int k = 0; k < 6; ++k) done.P[6 * t + k] = whole.P[6 * t + k];
+      done.alpha[t] = whole.alpha[t];
+    }
+    pmpm::sheet_sum_forces(done);
+    CHECK(done.f == whole.f);
   }
 
   // 3. forces = -grad U

@@ -92,6 +92,12 @@ struct Sheet {
   // per triangle: the forces' tensor (N11, N22, N12 in e1, e2; its principal values are N), and
   // under the elastoplastic law the plastic strain (3) and the accumulated plastic strain
   std::vector<double> tens, bp, alpha;
+  // per triangle: its first Piola-Kirchhoff tension P (3 x 2, row-major; its corners' forces are
+  // -A0 P g_a), and whether this rank's values of the triangle's arrays are those of the current
+  // positions (under MPI a rank computes only the triangles at the points it owns,
+  // src/step/sheets.cpp)
+  std::vector<double> P;
+  std::vector<char> fresh;
 
   // On the grid (sheet_contact.hpp): a sheet alone is the grid's only body (body 0, no slots);
   // a sheet between bodies is a body of its own, body - 1 below it and body + 1 above, with its
@@ -147,6 +153,15 @@ void sheet_strip(const double *xy, int nx, double z0, double dz, int nz, Sheet &
 void sheet_reference(Sheet &s);
 // Strains, tensions and the internal point forces f from the current positions x.
 void sheet_update_forces(Sheet &s);
+// The same for the listed triangles only (increasing): f is complete at the points all of whose
+// triangles are listed, and equal bit for bit to the whole sheet's there (the same sums in the
+// same order). The other triangles' arrays keep older values (not fresh); an elastoplastic
+// triangle's plastic state advances only where it is computed.
+void sheet_update_forces(Sheet &s, const std::vector<int> &tris);
+// f summed over every triangle from its stored P, once every triangle's arrays are those of the
+// current positions (after a partial update, src/step/sheets.cpp's SheetsComplete takes the
+// others' from the ranks that computed them); every triangle is then fresh.
+void sheet_sum_forces(Sheet &s);
 // Lay the sheet where it is, unstrained (chain_lay's 3D form): the current positions become the
 // reference (sheet_reference), the plastic state and the slips start from zero, the forces are
 // recomputed (zero).
@@ -156,6 +171,8 @@ double sheet_energy(const Sheet &s);
 // The points' unit normals from the current positions: the area-weighted mean of the normals
 // of the triangles around each point.
 void sheet_normals(Sheet &s);
+// The same from the listed triangles only: exact at the points all of whose triangles are listed.
+void sheet_normals(Sheet &s, const std::vector<int> &tris);
 // A disc's answers (sheet_disc's lattice of radius R and ring gap dr): the centre strain (the
 // mean of (b1 + b2) / 2 over the triangles at the centre point) and the rim's radial strain (the
 // area-weighted radial strain of the outer band of triangles, centroids within dr of the rim, and

@@ -216,6 +216,8 @@ struct Scratch {
   std::vector<double> fbar_shift; // -fbar: group pressure less the particle's
   std::vector<double> eigen;      // the step's eigenstrain increments (3 per particle)
   std::vector<double> chain_buf;  // the chains' points packed for their allreduce
+  std::vector<int> sheet_tris;    // the 3D sheets' triangles this rank computes (sheets.cpp)
+  std::vector<char> sheet_near;   // the 3D sheets' points whose blocks reach this rank's nodes
 };
 
 // What the scene and the options define, read once at setup and not changed by the run (a

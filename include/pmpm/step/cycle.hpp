@@ -56,4 +56,9 @@ PetscErrorCode Migrate(Simulation &sim);
 // Collective.
 PetscErrorCode RunStages(Simulation &sim);
 
+// Under MPI each rank computes the 3D sheets' triangles at the points it owns (sheets.cpp); this
+// makes every triangle's strains, forces and plastic state, and every point's force and normal,
+// whole on every rank, as the reports, the outputs and a checkpoint read them. Collective.
+PetscErrorCode SheetsComplete(Simulation &sim);
+
 } // namespace pmpm

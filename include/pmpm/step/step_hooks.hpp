@@ -14,7 +14,9 @@ namespace pmpm {
 // The step's -log_view events (registered by LogRegister, cycle.cpp).
 struct StepEvents {
   PetscLogEvent p2g = 0, l2g = 0, grid = 0, g2l = 0, g2p = 0, musl = 0, stress = 0, migrate = 0,
-                iface = 0, chain = 0, contact = 0, fbar = 0, support = 0;
+                iface = 0, chain = 0, contact = 0, fbar = 0, support = 0, sheet_share = 0,
+                sheet_forces = 0; // inside Chain: the 3D sheets' allreduce and
+                                  // triangles
 };
 extern StepEvents step_events;
 
