@@ -20,7 +20,8 @@ Asserted (stages 1.00 and 1.10 q_u, -footing_collapse_settlement 0.15):
    1.00 q_u and collapses at 1.10 q_u: the capacity within 10 % of Prandtl's, as 2D at this cell;
    its settlement at 1.00 q_u within 3 % of 2D's (the two F-bars differ by the out-of-plane
    strain; measured 0.4 %; without F-bar the 3D run settles 11 % less after stages 0.90-1.00).
-2. 3D without F-bar: holds at 1.10 q_u, the locked overshoot (what 1. shows F-bar removes).
+2. 3D without F-bar: holds at 1.10 q_u, the locked overshoot (what 1. shows F-bar removes);
+   to -tol 1e-3, as holding is what is asserted.
 3. 300 fixed steps of 1. over four cells of depth (-depth 0.25, so each of two z slabs has its
    two) on 1, 2 (PETSc's split) and 4 ranks (2x1x2): particles equal to 1e-10 of B (F-bar's groups are the owned cells, so the averages see the same particles on any grid).
 """
@@ -60,8 +61,9 @@ c.le(f"3D settlement at 1.00 q_u ({s3[0]['settlement']:.5f} m) against 2D's "
 c.check("3D summary: F-bar on, 3 cell counts", summary(out + "/3d")["results"]["fbar"] == 1
         and len(summary(out + "/3d")["cells"]) == 3)
 
-# 2. without F-bar the linear cells lock: the soil holds 1.10 q_u
-run(exe, 2, BASE + D3 + ["-fbar", "0"] + pressures(1.1), out + "/3d_nofbar")
+# 2. without F-bar the linear cells lock: the soil holds 1.10 q_u (to -tol 1e-3: 7,135 steps and
+# 0.0835 m, against 0.0839 m at the scene's 1e-4 in twice the time; holding is what is asserted)
+run(exe, 2, BASE + D3 + ["-fbar", "0", "-tol", "1e-3"] + pressures(1.1), out + "/3d_nofbar")
 n3 = stage_list("3d_nofbar")
 c.check("3D, no F-bar: holds at 1.10 q_u (locked)", n3[0]["holds"],
         f"(settlement {n3[0]['settlement']:.4f} m)")
