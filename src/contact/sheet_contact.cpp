@@ -164,7 +164,9 @@ void sheet_friction_capacity(const GridViewT<3> &L, const GridViewT<3> &G,
   };
   for (const Sheet &s : sheets) {
     if (!s.in_contact()) continue;
-    for (int i = 0; i < s.n; ++i) {
+    const int m = s.reach.empty() ? s.n : static_cast<int>(s.reach.size());
+    for (int k = 0; k < m; ++k) {
+      const int i = s.reach.empty() ? k : s.reach[k];
       if (s.pinned[i]) continue;
       sheet_point_weights(s, i, L, W);
       // only points whose stencil lies in this rank's ghosted range reach its nodes

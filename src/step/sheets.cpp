@@ -209,15 +209,16 @@ void G2PSheet(const Sheet &s, const GridT<3> &g, const GridViewT<3> &G, double d
 // sheet_point_weights: also sheet_friction_capacity's points in the ghost layers) are then
 // exact. A block's first node is the point's cell c or c - 1 (its half-size is under half a cell)
 // and it spans three nodes, so only cells gs <= c <= gs + gm - 2 reach the ghosted nodes.
-void LocalTriangles(const Sheet &s, const GridT<3> &g, std::vector<char> &near,
-                    std::vector<int> &tris) {
+void LocalTriangles(Sheet &s, const GridT<3> &g, std::vector<char> &near, std::vector<int> &tris) {
   near.assign(s.n, 0);
+  s.reach.clear();
   for (int i = 0; i < s.n; ++i) {
     PetscInt c[3];
     CellOf(g, &s.x[3 * static_cast<size_t>(i)], c);
     bool in = true;
     for (int d = 0; d < 3; ++d) in = in && c[d] >= g.gs[d] && c[d] <= g.gs[d] + g.gm[d] - 2;
     near[i] = in || g.owns_cell(c);
+    if (near[i]) s.reach.push_back(i);
   }
   tris.clear();
   for (int t = 0; t < s.nt; ++t) {
@@ -426,6 +427,9 @@ PetscErrorCode SheetsComplete(Simulation &sim) {
     sheet_sum_forces(s);
     sheet_normals(s);
   }
+  // the next step may run on another partition (-balance run): every point, until it computes
+  // its own list again
+  for (Sheet &s : sim.sheets) s.reach.clear();
   PetscFunctionReturn(0);
 }
 

@@ -98,6 +98,9 @@ struct Sheet {
   // src/step/sheets.cpp)
   std::vector<double> P;
   std::vector<char> fresh;
+  // the points whose blocks can reach this rank's nodes, increasing (src/step/sheets.cpp; empty:
+  // every point, as on one rank)
+  std::vector<int> reach;
 
   // On the grid (sheet_contact.hpp): a sheet alone is the grid's only body (body 0, no slots);
   // a sheet between bodies is a body of its own, body - 1 below it and body + 1 above, with its
