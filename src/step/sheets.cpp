@@ -1,17 +1,18 @@
 // 3D sheets (sheet.hpp) in the explicit step under -dim 3: their points' mass, momentum and
-// forces into the grid's nodes, the points moved by the owner of their cell and shared by one
-// allreduce, their forces from the new positions, and their share of the step's report. Every
-// rank holds the whole sheet's points; each computes only the triangles at the points whose
-// blocks reach its nodes (LocalTriangles), so the triangles' cost divides among the ranks, and
-// SheetsComplete makes them whole where the whole sheet is read (a stage's record, the outputs,
-// a checkpoint). An elastoplastic triangle that comes to a rank takes its plastic state from one
-// that computed it (RefreshPlasticState). Points
+// forces into the grid's nodes, the points moved by the owner of their cell and sent to the
+// ranks around it (ShareWithNeighbours), their forces from the new positions, and their share of
+// the step's report. Every rank holds arrays for the whole sheet, current for the points of its
+// own and its neighbours' cells (Sheet::here); each computes only the triangles at the points
+// whose blocks reach its nodes (LocalTriangles), and SheetsComplete makes the sheet whole where
+// it is read whole (a stage's record, the outputs, a checkpoint). An elastoplastic triangle that
+// comes to a rank takes its plastic state from one that computed it (RefreshPlasticState). Points
 // may be pinned, or held in some components (rollers: the extruded catenary's free edges). A
 // sheet alone on the grid (the sheet and extruded catenary scenes) is the grid's only body; a
 // sheet between bodies (an extruded scene's chain, extrude.cpp) is a body of its own, and the
 // stacked bodies at its nodes are resolved after the momentum balance (sheet_contact.hpp).
 #include "pmpm/contact/sheet_contact.hpp"
 #include "pmpm/step/step_hooks.hpp"
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -63,11 +64,15 @@ namespace {
 void P2GSheet(const Sheet &s, const LoadT<3> &load, const GridT<3> &g, const GridViewT<3> &G) {
   Weights<UGIMPShape, 3> W;
   const int body = s.body * G3::NDOF;
-  for (int i = 0; i < s.n; ++i) {
-    const double *x = &s.x[3 * static_cast<size_t>(i)];
-    PetscInt c[3];
-    CellOf(G, x, c);
-    if (s.pinned[i] || !g.owns_cell(c)) continue;
+  const int m_pts = s.mine_valid ? static_cast<int>(s.mine.size()) : s.n;
+  for (int k0 = 0; k0 < m_pts; ++k0) {
+    const int i = s.mine_valid ? s.mine[k0] : k0;
+    if (!s.mine_valid) { // every point is current here (mine is set after each step)
+      PetscInt c[3];
+      CellOf(G, &s.x[3 * static_cast<size_t>(i)], c);
+      if (!g.owns_cell(c)) continue;
+    }
+    if (s.pinned[i]) continue;
     sheet_point_weights(s, i, G, W);
     const double m = s.mass[i], wt = load.factor * s.weight[i];
     // a held component's forces meet its support's reaction: none reach the grid
@@ -99,10 +104,24 @@ void P2GSheet(const Sheet &s, const LoadT<3> &load, const GridT<3> &g, const Gri
   }
 }
 
+// The points this rank moves, from every point's position (after the set-up, a restart or
+// SheetsComplete, when every point is current on every rank).
+void EnsureMine(Sheet &s, const GridT<3> &g) {
+  if (s.mine_valid) return;
+  s.mine.clear();
+  for (int i = 0; i < s.n; ++i) {
+    PetscInt c[3];
+    CellOf(g, &s.x[3 * static_cast<size_t>(i)], c);
+    if (g.owns_cell(c)) s.mine.push_back(i);
+  }
+  s.mine_valid = true;
+}
+
 PetscErrorCode ParticlesToGrid(StepStateT<3> &S) {
   GridT<3> &g = S.sim.grid3;
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.chain);
+  for (Sheet &s : S.sim.sheets) EnsureMine(s, g);
   PetscCall(GridWithLocal(g, false, [&](const GridViewT<3> &G) {
     for (const Sheet &s : S.sim.sheets) P2GSheet(s, S.load, g, G);
   }));
@@ -110,9 +129,9 @@ PetscErrorCode ParticlesToGrid(StepStateT<3> &S) {
 }
 
 // 5a. The owner of each point's cell moves it (the grid's velocity and acceleration at the point,
-//     FLIP / PIC as the chains', -chain_pic); buf gets, for the points it owns, x, v and 1, and
-//     for a sheet between bodies the slip on each face and the pressure on each face (PackWidth);
-//     zeros for the others.
+//     FLIP / PIC as the chains', -chain_pic); rec gets a record per point it moves (s.mine): the
+//     point's index, then x, v and 1, and for a sheet between bodies the slip on each face and
+//     the pressure on each face (PackWidth values).
 int PackWidth(const Sheet &s) {
   return s.in_contact() ? 15 : 7;
 }
@@ -164,17 +183,16 @@ void FaceSlipsAndPressures(const Sheet &s, int i, const GridViewT<3> &G,
   out[7] = nbt / dt;
 }
 
-void G2PSheet(const Sheet &s, const GridT<3> &g, const GridViewT<3> &G, double dt, double pic,
-              double tail_share, std::vector<double> &buf) {
+void G2PSheet(const Sheet &s, const GridViewT<3> &G, double dt, double pic, double tail_share,
+              std::vector<double> &rec) {
   Weights<UGIMPShape, 3> W;
   const int pw = PackWidth(s), body = s.body * G3::NDOF;
-  buf.assign(pw * static_cast<size_t>(s.n), 0.0);
-  for (int i = 0; i < s.n; ++i) {
+  rec.assign((1 + pw) * s.mine.size(), 0.0);
+  for (size_t k0 = 0; k0 < s.mine.size(); ++k0) {
+    const int i = s.mine[k0];
     const double *x = &s.x[3 * static_cast<size_t>(i)], *v = &s.v[3 * static_cast<size_t>(i)];
-    PetscInt c[3];
-    CellOf(G, x, c);
-    if (!g.owns_cell(c)) continue;
-    double *out = &buf[pw * static_cast<size_t>(i)];
+    rec[(1 + pw) * k0] = i;
+    double *out = &rec[(1 + pw) * k0 + 1];
     out[6] = 1.0;
     if (s.pinned[i]) {
       for (int d = 0; d < 3; ++d) out[d] = x[d];
@@ -208,23 +226,157 @@ void G2PSheet(const Sheet &s, const GridT<3> &g, const GridViewT<3> &G, double d
 // ghosted nodes. Those points' forces (P2GSheet: the points it owns) and normals (their blocks,
 // sheet_point_weights: also sheet_friction_capacity's points in the ghost layers) are then
 // exact. A block's first node is the point's cell c or c - 1 (its half-size is under half a cell)
-// and it spans three nodes, so only cells gs <= c <= gs + gm - 2 reach the ghosted nodes.
-void LocalTriangles(Sheet &s, const GridT<3> &g, std::vector<char> &near, std::vector<int> &tris) {
+// and it spans three nodes, so only cells gs <= c <= gs + gm - 2 reach the ghosted nodes; those
+// cells are this rank's or its neighbours' (a rank's cells are at least a stencil wide), whose
+// points it holds current (s.here). Also sets s.reach (those points) and s.mine (the points in
+// its own cells). Returns whether a listed triangle has a corner this rank does not hold current
+// (a triangle reaching past the neighbours: the step then shares every point).
+bool LocalTriangles(Sheet &s, const GridT<3> &g, std::vector<char> &near, std::vector<int> &tris) {
   near.assign(s.n, 0);
   s.reach.clear();
+  s.mine.clear();
+  const bool all = s.here.empty();
   for (int i = 0; i < s.n; ++i) {
+    if (!all && !s.here[i]) continue;
     PetscInt c[3];
     CellOf(g, &s.x[3 * static_cast<size_t>(i)], c);
+    const bool own = g.owns_cell(c);
     bool in = true;
     for (int d = 0; d < 3; ++d) in = in && c[d] >= g.gs[d] && c[d] <= g.gs[d] + g.gm[d] - 2;
-    near[i] = in || g.owns_cell(c);
+    near[i] = in || own;
     if (near[i]) s.reach.push_back(i);
+    if (own) s.mine.push_back(i);
   }
+  s.mine_valid = true;
   tris.clear();
+  bool missing = false;
   for (int t = 0; t < s.nt; ++t) {
     const int *v = &s.tri[3 * static_cast<size_t>(t)];
-    if (near[v[0]] || near[v[1]] || near[v[2]]) tris.push_back(t);
+    if (!(near[v[0]] || near[v[1]] || near[v[2]])) continue;
+    tris.push_back(t);
+    if (!all) missing = missing || !s.here[v[0]] || !s.here[v[1]] || !s.here[v[2]];
   }
+  return missing;
+}
+
+// The ranks beside this one on the grid (DMDAGetNeighbors: the 26 around it, without itself and
+// the box's outside), each once; and whether every rank is at least kWide nodes wide in each
+// direction. The points a rank needs (those of its cells and of the cells within two of them,
+// LocalTriangles) are then all moved by it or by a neighbour: a point moves less than a cell a
+// step, and a rank two away has its cells at least kWide away. On a thinner split every rank
+// takes every point (ShareWithAll), as before the points were shared with neighbours only.
+constexpr PetscInt kWide = 4;
+PetscErrorCode Neighbours(const GridT<3> &g, PetscMPIInt rank, std::vector<PetscMPIInt> &nb,
+                          bool *wide) {
+  const PetscMPIInt *r;
+  const PetscInt *l[3];
+  PetscInt p[3];
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetNeighbors(g.da, &r));
+  nb.clear();
+  for (int k = 0; k < 27; ++k)
+    if (r[k] >= 0 && r[k] != rank && std::find(nb.begin(), nb.end(), r[k]) == nb.end())
+      nb.push_back(r[k]);
+  std::sort(nb.begin(), nb.end());
+  PetscCall(DMDAGetInfo(g.da, nullptr, nullptr, nullptr, nullptr, &p[0], &p[1], &p[2], nullptr,
+                        nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(g.da, &l[0], &l[1], &l[2]));
+  *wide = true;
+  for (int d = 0; d < 3; ++d)
+    for (PetscInt q = 0; q < p[d] && p[d] > 1; ++q) *wide = *wide && l[d][q] >= kWide;
+  PetscFunctionReturn(0);
+}
+
+// Records (G2PSheet's) into the sheet: positions, velocities and, between bodies, the slips and
+// pressures; each point marked current. Returns the index of a point with a non-finite position
+// or velocity, or -1.
+int Unpack(Sheet &s, const double *rec, size_t nrec) {
+  const int pw = PackWidth(s);
+  int bad = -1;
+  for (size_t k = 0; k < nrec; ++k) {
+    const double *r = rec + (1 + pw) * k;
+    const int i = static_cast<int>(r[0]);
+    const double *b = r + 1;
+    for (int d = 0; d < 3; ++d) {
+      s.x[3 * i + d] = b[d];
+      s.v[3 * i + d] = b[3 + d];
+    }
+    if (s.in_contact() && !s.pinned[i]) {
+      for (int d = 0; d < 3; ++d) {
+        s.slip_top[3 * i + d] = b[7 + d];
+        s.slip_bot[3 * i + d] = b[10 + d];
+      }
+      s.p_top[i] = b[13];
+      s.p_bot[i] = b[14];
+    }
+    if (!s.here.empty()) s.here[i] = 1;
+    if (bad < 0 && !std::isfinite(b[0] + b[1] + b[2] + b[3] + b[4] + b[5])) bad = i;
+  }
+  return bad;
+}
+
+// The records of the points this rank moves (s.mine) as they are now (SheetsComplete).
+void Pack(const Sheet &s, std::vector<double> &rec) {
+  const int pw = PackWidth(s);
+  rec.assign((1 + pw) * s.mine.size(), 0.0);
+  for (size_t k = 0; k < s.mine.size(); ++k) {
+    const int i = s.mine[k];
+    double *r = &rec[(1 + pw) * k];
+    r[0] = i;
+    for (int d = 0; d < 3; ++d) {
+      r[1 + d] = s.x[3 * i + d];
+      r[4 + d] = s.v[3 * i + d];
+    }
+    r[7] = 1.0;
+    if (!s.in_contact()) continue;
+    for (int d = 0; d < 3; ++d) {
+      r[8 + d] = s.slip_top[3 * i + d];
+      r[11 + d] = s.slip_bot[3 * i + d];
+    }
+    r[14] = s.p_top[i];
+    r[15] = s.p_bot[i];
+  }
+}
+
+// Each rank's records to its neighbours and theirs to it (the points of the cells around its
+// own), into `in`.
+PetscErrorCode ShareWithNeighbours(const std::vector<PetscMPIInt> &nb,
+                                   const std::vector<double> &rec, MPI_Comm comm,
+                                   std::vector<std::vector<double>> &in) {
+  const int nn = static_cast<int>(nb.size()), tag = 7301;
+  std::vector<int> count(nn), mine(nn, static_cast<int>(rec.size()));
+  std::vector<MPI_Request> rq(2 * static_cast<size_t>(nn));
+  PetscFunctionBeginUser;
+  for (int k = 0; k < nn; ++k) {
+    PetscCallMPI(MPI_Irecv(&count[k], 1, MPI_INT, nb[k], tag, comm, &rq[k]));
+    PetscCallMPI(MPI_Isend(&mine[k], 1, MPI_INT, nb[k], tag, comm, &rq[nn + k]));
+  }
+  PetscCallMPI(MPI_Waitall(2 * nn, rq.data(), MPI_STATUSES_IGNORE));
+  in.resize(nn);
+  for (int k = 0; k < nn; ++k) {
+    in[k].resize(count[k]);
+    PetscCallMPI(MPI_Irecv(in[k].data(), count[k], MPI_DOUBLE, nb[k], tag + 1, comm, &rq[k]));
+    PetscCallMPI(MPI_Isend(rec.data(), mine[k], MPI_DOUBLE, nb[k], tag + 1, comm, &rq[nn + k]));
+  }
+  PetscCallMPI(MPI_Waitall(2 * nn, rq.data(), MPI_STATUSES_IGNORE));
+  PetscFunctionReturn(0);
+}
+
+// Every rank's records to every rank (the step whose triangles reach past the neighbours, and
+// SheetsComplete).
+PetscErrorCode ShareWithAll(const std::vector<double> &rec, MPI_Comm comm,
+                            std::vector<double> &all) {
+  PetscMPIInt size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  std::vector<int> count(size), displ(size + 1, 0);
+  const int n = static_cast<int>(rec.size());
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, count.data(), 1, MPI_INT, comm));
+  for (int r = 0; r < size; ++r) displ[r + 1] = displ[r] + count[r];
+  all.resize(displ[size]);
+  PetscCallMPI(MPI_Allgatherv(rec.data(), n, MPI_DOUBLE, all.data(), count.data(), displ.data(),
+                              MPI_DOUBLE, comm));
+  PetscFunctionReturn(0);
 }
 
 // An elastoplastic triangle's plastic state is history: a rank that computes a triangle it did
@@ -268,52 +420,73 @@ PetscErrorCode GridToPoints(StepStateT<3> &S) {
   PetscFunctionBeginUser;
   PmpmLogEventScope(step_events.chain);
   const double pic = sim.set.chain_pic < 0 ? S.pp.pic : sim.set.chain_pic;
-  std::vector<double> &buf = sim.scratch.chain_buf;
+  std::vector<double> &rec = sim.scratch.chain_buf;
   for (Sheet &s : sim.sheets) {
     PetscCall(GridWithLocal(g, false, [&](const GridViewT<3> &G) {
-      G2PSheet(s, g, G, S.dt, pic, sim.model.iface.tail_share, buf);
+      G2PSheet(s, G, S.dt, pic, sim.model.iface.tail_share, rec);
     }));
-    {
-      PmpmLogEventScope(step_events.sheet_share);
-      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE,
-                                 MPI_SUM, sim.comm));
-    }
     const int pw = PackWidth(s);
-    int owners = 0;
-    for (int i = 0; i < s.n; ++i) {
-      const double *b = &buf[pw * static_cast<size_t>(i)];
-      owners += b[6] == 1.0;
-      for (int d = 0; d < 3; ++d) {
-        s.x[3 * i + d] = b[d];
-        s.v[3 * i + d] = b[3 + d];
+    const size_t nrec = rec.size() / (1 + pw);
+    int bad = Unpack(s, rec.data(), nrec);
+    int check[3] = {static_cast<int>(nrec), 0, bad >= 0 ? bad + 1 : 0};
+    std::vector<int> &tris = sim.scratch.sheet_tris;
+    if (sim.size > 1) {
+      // the points of the cells around this rank's, from its neighbours
+      std::vector<std::vector<double>> in(1);
+      bool wide = false;
+      {
+        PmpmLogEventScope(step_events.sheet_share);
+        std::vector<PetscMPIInt> nb;
+        PetscCall(Neighbours(g, sim.rank, nb, &wide));
+        if (wide)
+          PetscCall(ShareWithNeighbours(nb, rec, sim.comm, in));
+        else
+          PetscCall(ShareWithAll(rec, sim.comm, in[0]));
       }
-      if (s.in_contact() && !s.pinned[i]) {
-        for (int d = 0; d < 3; ++d) {
-          s.slip_top[3 * i + d] = b[7 + d];
-          s.slip_bot[3 * i + d] = b[10 + d];
-        }
-        s.p_top[i] = b[13];
-        s.p_bot[i] = b[14];
+      if (wide) {
+        s.here.assign(s.n, 0);
+        for (const int i : s.mine) s.here[i] = 1; // the records' points (the last step's mine)
+      } else {
+        s.here.clear();
       }
-      PetscCheck(std::isfinite(b[0] + b[1] + b[2] + b[3] + b[4] + b[5]), sim.comm,
-                 PETSC_ERR_NOT_CONVERGED,
-                 "Instability at step %" PetscInt_FMT ": sheet point %d (initially at (%g, %g, %g) "
-                 "m) has a non-finite position or velocity. Reduce -cfl (now %g) or raise "
-                 "-damping_alpha.",
-                 sim.run.step, i, s.x0[3 * i], s.x0[3 * i + 1], s.x0[3 * i + 2], sim.set.cfl);
+      for (const std::vector<double> &r : in) {
+        const int b2 = Unpack(s, r.data(), r.size() / (1 + pw));
+        if (check[2] == 0 && b2 >= 0) check[2] = b2 + 1;
+      }
+      check[1] = LocalTriangles(s, g, sim.scratch.sheet_near, tris);
     }
-    PetscCheck(owners == s.n, sim.comm, PETSC_ERR_NOT_CONVERGED,
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, check, 2, MPI_INT, MPI_SUM, sim.comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, check + 2, 1, MPI_INT, MPI_MAX, sim.comm));
+    if (check[2] > 0) {
+      const int i = check[2] - 1;
+      SETERRQ(sim.comm, PETSC_ERR_NOT_CONVERGED,
+              "Instability at step %" PetscInt_FMT ": sheet point %d (initially at (%g, %g, %g) "
+              "m) has a non-finite position or velocity. Reduce -cfl (now %g) or raise "
+              "-damping_alpha.",
+              sim.run.step, i, s.x0[3 * i], s.x0[3 * i + 1], s.x0[3 * i + 2], sim.set.cfl);
+    }
+    PetscCheck(check[0] == s.n, sim.comm, PETSC_ERR_NOT_CONVERGED,
                "Instability at step %" PetscInt_FMT ": the sheet has %d of its %d points off the "
                "grid. Enlarge the grid or reduce -cfl (now %g).",
-               sim.run.step, s.n - owners, s.n, sim.set.cfl);
+               sim.run.step, s.n - check[0], s.n, sim.set.cfl);
+    if (check[1] > 0) { // a triangle reaches past the neighbours: every point, this step
+      PetscCall(PetscInfo(nullptr,
+                          "sheet %s: a triangle reaches past a rank's neighbours at step "
+                          "%" PetscInt_FMT ": every point shared\n",
+                          s.name.c_str(), sim.run.step));
+      std::vector<double> all;
+      PetscCall(ShareWithAll(rec, sim.comm, all));
+      Unpack(s, all.data(), all.size() / (1 + pw));
+      s.here.clear();
+      LocalTriangles(s, g, sim.scratch.sheet_near, tris);
+    }
     PmpmLogEventScope(step_events.sheet_forces);
     if (sim.size == 1) {
       sheet_update_forces(s);
       sheet_normals(s);
+      s.mine_valid = false; // from the new positions at the next P2G
       continue;
     }
-    std::vector<int> &tris = sim.scratch.sheet_tris;
-    LocalTriangles(s, g, sim.scratch.sheet_near, tris);
     if (s.law == SheetLaw::Elastoplastic) PetscCall(RefreshPlasticState(s, tris, sim.comm));
     sheet_update_forces(s, tris);
     sheet_normals(s, tris);
@@ -359,9 +532,14 @@ PetscErrorCode Reductions(StepState &S) {
   }
   double ke = 0, v2 = 0, c = 0, pw = 0;
   const double gz = sim.set.gdir_z;
+  // one rank: every point; under MPI the points each rank moves (the others' velocities may be
+  // a step old here), summed over the ranks
+  const bool split = sim.size > 1;
   for (const Sheet &s : sim.sheets) {
     c = std::fmax(c, s.wave_speed());
-    for (int i = 0; i < s.n; ++i) {
+    const int m = split ? static_cast<int>(s.mine.size()) : s.n;
+    for (int k = 0; k < m; ++k) {
+      const int i = split ? s.mine[k] : k;
       const double *v = &s.v[3 * static_cast<size_t>(i)];
       const double s2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
       ke += 0.5 * s.mass[i] * s2;
@@ -371,6 +549,13 @@ PetscErrorCode Reductions(StepState &S) {
       if (!s.fend.empty())
         pw += s.fend[3 * i] * v[0] + s.fend[3 * i + 1] * v[1] + s.fend[3 * i + 2] * v[2];
     }
+  }
+  if (split) {
+    double sum[2] = {ke, pw};
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sum, 2, MPI_DOUBLE, MPI_SUM, sim.comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &v2, 1, MPI_DOUBLE, MPI_MAX, sim.comm));
+    ke = sum[0];
+    pw = sum[1];
   }
   report_points(rep, sim.rank, ke, c, v2, pw);
   PetscFunctionReturn(0);
@@ -402,6 +587,17 @@ PetscErrorCode SheetsComplete(Simulation &sim) {
   PetscFunctionBeginUser;
   if (sim.size == 1) PetscFunctionReturn(0);
   for (Sheet &s : sim.sheets) {
+    // every point from the rank that moves it
+    int partial = 0;
+    for (size_t i = 0; i < s.here.size(); ++i) partial |= !s.here[i];
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &partial, 1, MPI_INT, MPI_LOR, sim.comm));
+    if (partial) {
+      std::vector<double> rec, all;
+      Pack(s, rec);
+      PetscCall(ShareWithAll(rec, sim.comm, all));
+      Unpack(s, all.data(), all.size() / (1 + PackWidth(s)));
+    }
+    s.here.clear();
     int stale = 0;
     for (int t = 0; t < s.nt; ++t) stale |= !s.fresh[t];
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &stale, 1, MPI_INT, MPI_LOR, sim.comm));
@@ -428,8 +624,11 @@ PetscErrorCode SheetsComplete(Simulation &sim) {
     sheet_normals(s);
   }
   // the next step may run on another partition (-balance run): every point, until it computes
-  // its own list again
-  for (Sheet &s : sim.sheets) s.reach.clear();
+  // its own lists again
+  for (Sheet &s : sim.sheets) {
+    s.reach.clear();
+    s.mine_valid = false;
+  }
   PetscFunctionReturn(0);
 }
 

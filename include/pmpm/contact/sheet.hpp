@@ -98,9 +98,13 @@ struct Sheet {
   // src/step/sheets.cpp)
   std::vector<double> P;
   std::vector<char> fresh;
-  // the points whose blocks can reach this rank's nodes, increasing (src/step/sheets.cpp; empty:
-  // every point, as on one rank)
-  std::vector<int> reach;
+  // Under MPI (src/step/sheets.cpp): the points whose blocks can reach this rank's nodes,
+  // increasing (empty: every point, as on one rank); the points this rank moves (the owner of
+  // their cell; valid when mine_valid); per point, whether this rank's position and velocity are
+  // the current ones (the points of its own and its neighbours' cells; empty: every point).
+  std::vector<int> reach, mine;
+  bool mine_valid = false;
+  std::vector<char> here;
 
   // On the grid (sheet_contact.hpp): a sheet alone is the grid's only body (body 0, no slots);
   // a sheet between bodies is a body of its own, body - 1 below it and body + 1 above, with its

@@ -56,9 +56,11 @@ PetscErrorCode Migrate(Simulation &sim);
 // Collective.
 PetscErrorCode RunStages(Simulation &sim);
 
-// Under MPI each rank computes the 3D sheets' triangles at the points it owns (sheets.cpp); this
-// makes every triangle's strains, forces and plastic state, and every point's force and normal,
-// whole on every rank, as the reports, the outputs and a checkpoint read them. Collective.
+// Under MPI each rank holds current only the 3D sheets' points of its own and its neighbours'
+// cells and computes only the triangles near its cells (sheets.cpp); this makes every point's
+// position, velocity, slips, pressures, force and normal, and every triangle's strains, forces
+// and plastic state, whole on every rank, as the reports, the outputs and a checkpoint read them.
+// Collective.
 PetscErrorCode SheetsComplete(Simulation &sim);
 
 } // namespace pmpm
