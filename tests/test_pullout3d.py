@@ -18,8 +18,9 @@ h = 0.02 m) over -depth 0.06 m (three cells; the z faces rollers, the strip's ed
     within 3 % (the blocks are at rest);
   - on NP > 1 ranks, on a process grid cut in x and in z (the sheet crosses rank boundaries in two
     directions), the same answers as on one rank to 1e-9 (measured 8e-12).
-Above capacity (L = 2 m, P = 35 kN/m = 1.25 m L, 2500 steps), as the 2D test: the friction the
-sheet carries while all of it slides = (mu_t + mu_b) p L within 3 %.
+Above capacity (L = 2 m, P = 35 kN/m = 1.25 m L, 1,500 steps: 1,000 after the ramp), as the 2D
+test: the friction the sheet carries while all of it slides = (mu_t + mu_b) p L within 3 %
+(measured 2.80 %; 2.77 % over 2,500 steps).
 """
 import sys
 
@@ -68,7 +69,7 @@ if np_ > 1:  # the same scene on one rank
 else:
     run(exe, 1, base + dim3 + ["-pullout_length", "2", "-pullout_force", "35000",
                                "-pullout_margin", "0.4", "-ramp_steps", "500", "-max_steps",
-                               "2500"], f"{out}/pulled_out", capped=True)
+                               "1500"], f"{out}/pulled_out", capped=True)
     s = summary(f"{out}/pulled_out")
     r = s["results"]
     what = "3D, P = 1.25 (mu_t + mu_b) p L"
