@@ -94,7 +94,7 @@ struct Sheet {
   std::vector<double> tens, bp, alpha;
   // per triangle: its first Piola-Kirchhoff tension P (3 x 2, row-major; its corners' forces are
   // -A0 P g_a), and whether this rank's values of the triangle's arrays are those of the current
-  // positions (under MPI a rank computes only the triangles at the points it owns,
+  // positions (under MPI a rank computes only the triangles near its cells,
   // src/step/sheets.cpp)
   std::vector<double> P;
   std::vector<char> fresh;
