@@ -320,16 +320,9 @@ void TriangleState(Sheet &s, int t) {
       F * (T.N1 / l1 * n1 * n1.transpose() + (T.N2 != 0.0 ? T.N2 / l2 : 0.0) * n2 * n2.transpose());
   Pt = P;
 }
-
-// The per-triangle arrays sized (a sheet set up by hand, as the unit tests do, may not have P).
-void SizeTriangleArrays(Sheet &s) {
-  s.P.resize(6 * static_cast<size_t>(s.nt));
-  s.fresh.resize(s.nt);
-}
 } // namespace
 
 void sheet_update_forces(Sheet &s) {
-  SizeTriangleArrays(s);
   for (int t = 0; t < s.nt; ++t) TriangleState(s, t);
   std::fill(s.f.begin(), s.f.end(), 0.0);
   for (int t = 0; t < s.nt; ++t) AddCornerForces(s, t);
@@ -337,7 +330,6 @@ void sheet_update_forces(Sheet &s) {
 }
 
 void sheet_update_forces(Sheet &s, const std::vector<int> &tris) {
-  SizeTriangleArrays(s);
   std::fill(s.fresh.begin(), s.fresh.end(), 0);
   for (const int t : tris) {
     TriangleState(s, t);
@@ -348,7 +340,6 @@ void sheet_update_forces(Sheet &s, const std::vector<int> &tris) {
 }
 
 void sheet_sum_forces(Sheet &s) {
-  SizeTriangleArrays(s);
   std::fill(s.f.begin(), s.f.end(), 0.0);
   for (int t = 0; t < s.nt; ++t) AddCornerForces(s, t);
   std::fill(s.fresh.begin(), s.fresh.end(), 1);

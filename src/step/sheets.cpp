@@ -35,6 +35,13 @@ template <class Grid> void CellOf(const Grid &G, const double *x, PetscInt c[3])
   }
 }
 
+// Whether this rank owns the cell holding x (the rank that moves a point there).
+bool OwnsPoint(const GridT<3> &g, const double *x) {
+  PetscInt c[3];
+  CellOf(g, x, c);
+  return g.owns_cell(c);
+}
+
 bool InContact(const Simulation &sim) {
   for (const Sheet &s : sim.sheets)
     if (s.in_contact()) return true;
@@ -67,11 +74,8 @@ void P2GSheet(const Sheet &s, const LoadT<3> &load, const GridT<3> &g, const Gri
   const int m_pts = s.mine_valid ? static_cast<int>(s.mine.size()) : s.n;
   for (int k0 = 0; k0 < m_pts; ++k0) {
     const int i = s.mine_valid ? s.mine[k0] : k0;
-    if (!s.mine_valid) { // every point is current here (mine is set after each step)
-      PetscInt c[3];
-      CellOf(G, &s.x[3 * static_cast<size_t>(i)], c);
-      if (!g.owns_cell(c)) continue;
-    }
+    // without mine (every point is current here then): the points in this rank's cells
+    if (!s.mine_valid && !OwnsPoint(g, &s.x[3 * static_cast<size_t>(i)])) continue;
     if (s.pinned[i]) continue;
     sheet_point_weights(s, i, G, W);
     const double m = s.mass[i], wt = load.factor * s.weight[i];
@@ -109,11 +113,8 @@ void P2GSheet(const Sheet &s, const LoadT<3> &load, const GridT<3> &g, const Gri
 void EnsureMine(Sheet &s, const GridT<3> &g) {
   if (s.mine_valid) return;
   s.mine.clear();
-  for (int i = 0; i < s.n; ++i) {
-    PetscInt c[3];
-    CellOf(g, &s.x[3 * static_cast<size_t>(i)], c);
-    if (g.owns_cell(c)) s.mine.push_back(i);
-  }
+  for (int i = 0; i < s.n; ++i)
+    if (OwnsPoint(g, &s.x[3 * static_cast<size_t>(i)])) s.mine.push_back(i);
   s.mine_valid = true;
 }
 
@@ -130,10 +131,10 @@ PetscErrorCode ParticlesToGrid(StepStateT<3> &S) {
 
 // 5a. The owner of each point's cell moves it (the grid's velocity and acceleration at the point,
 //     FLIP / PIC as the chains', -chain_pic); rec gets a record per point it moves (s.mine): the
-//     point's index, then x, v and 1, and for a sheet between bodies the slip on each face and
-//     the pressure on each face (PackWidth values).
+//     point's index, then x and v, and for a sheet between bodies the slip on each face and the
+//     pressure on each face (PackWidth values).
 int PackWidth(const Sheet &s) {
-  return s.in_contact() ? 15 : 7;
+  return s.in_contact() ? 14 : 6;
 }
 
 // Point i's slips and pressures from the bodies beside it (a sheet between bodies): the slip
@@ -193,7 +194,6 @@ void G2PSheet(const Sheet &s, const GridViewT<3> &G, double dt, double pic, doub
     const double *x = &s.x[3 * static_cast<size_t>(i)], *v = &s.v[3 * static_cast<size_t>(i)];
     rec[(1 + pw) * k0] = i;
     double *out = &rec[(1 + pw) * k0 + 1];
-    out[6] = 1.0;
     if (s.pinned[i]) {
       for (int d = 0; d < 3; ++d) out[d] = x[d];
       continue;
@@ -218,7 +218,7 @@ void G2PSheet(const Sheet &s, const GridViewT<3> &G, double dt, double pic, doub
         out[3 + d] = 0.0;
       }
     }
-    if (s.in_contact()) FaceSlipsAndPressures(s, i, G, W, dt, tail_share, out + 7);
+    if (s.in_contact()) FaceSlipsAndPressures(s, i, G, W, dt, tail_share, out + 6);
   }
 }
 
@@ -303,11 +303,11 @@ int Unpack(Sheet &s, const double *rec, size_t nrec) {
     }
     if (s.in_contact() && !s.pinned[i]) {
       for (int d = 0; d < 3; ++d) {
-        s.slip_top[3 * i + d] = b[7 + d];
-        s.slip_bot[3 * i + d] = b[10 + d];
+        s.slip_top[3 * i + d] = b[6 + d];
+        s.slip_bot[3 * i + d] = b[9 + d];
       }
-      s.p_top[i] = b[13];
-      s.p_bot[i] = b[14];
+      s.p_top[i] = b[12];
+      s.p_bot[i] = b[13];
     }
     if (!s.here.empty()) s.here[i] = 1;
     if (bad < 0 && !std::isfinite(b[0] + b[1] + b[2] + b[3] + b[4] + b[5])) bad = i;
@@ -327,14 +327,13 @@ void Pack(const Sheet &s, std::vector<double> &rec) {
       r[1 + d] = s.x[3 * i + d];
       r[4 + d] = s.v[3 * i + d];
     }
-    r[7] = 1.0;
     if (!s.in_contact()) continue;
     for (int d = 0; d < 3; ++d) {
-      r[8 + d] = s.slip_top[3 * i + d];
-      r[11 + d] = s.slip_bot[3 * i + d];
+      r[7 + d] = s.slip_top[3 * i + d];
+      r[10 + d] = s.slip_bot[3 * i + d];
     }
-    r[14] = s.p_top[i];
-    r[15] = s.p_bot[i];
+    r[13] = s.p_top[i];
+    r[14] = s.p_bot[i];
   }
 }
 
@@ -379,11 +378,65 @@ PetscErrorCode ShareWithAll(const std::vector<double> &rec, MPI_Comm comm,
   PetscFunctionReturn(0);
 }
 
+// A triangle's arrays (sheet.hpp) for SheetsComplete: strains, principal strains and tensions,
+// the forces' tensor, P, the state, and an elastoplastic sheet's plastic state; f visits each.
+constexpr int kRecord = 3 + 2 + 2 + 3 + 6 + 1 + 4;
+template <class F> void TriangleRecord(Sheet &s, int t, F &&f) {
+  const size_t T = static_cast<size_t>(t);
+  for (int k = 0; k < 3; ++k) f(s.biot[3 * T + k]);
+  for (int k = 0; k < 2; ++k) f(s.b[2 * T + k]);
+  for (int k = 0; k < 2; ++k) f(s.N[2 * T + k]);
+  for (int k = 0; k < 3; ++k) f(s.tens[3 * T + k]);
+  for (int k = 0; k < 6; ++k) f(s.P[6 * T + k]);
+  double state = static_cast<double>(s.state[t]);
+  f(state);
+  s.state[t] = static_cast<SheetState>(static_cast<int>(state));
+  double none = 0;
+  const bool plastic = s.law == SheetLaw::Elastoplastic;
+  for (int k = 0; k < 3; ++k) f(plastic ? s.bp[3 * T + k] : none);
+  f(plastic ? s.alpha[t] : none);
+}
+// An elastoplastic triangle's plastic state alone.
+constexpr int kPlasticRecord = 4;
+template <class F> void PlasticRecord(Sheet &s, int t, F &&f) {
+  for (int k = 0; k < 3; ++k) f(s.bp[3 * static_cast<size_t>(t) + k]);
+  f(s.alpha[t]);
+}
+
+// Each triangle this rank did not compute at the last step (not fresh) takes the `width` values
+// `record` visits from the lowest rank that did: one allreduce of an int per triangle, one of
+// `width` doubles per triangle. Every triangle was computed by some rank (every point has an
+// owner). Collective.
+template <class Record>
+PetscErrorCode TakeFromLowestFresh(Sheet &s, MPI_Comm comm, int width, Record &&record) {
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  std::vector<int> from(s.nt);
+  for (int t = 0; t < s.nt; ++t) from[t] = s.fresh[t] ? rank : std::numeric_limits<int>::max();
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, from.data(), s.nt, MPI_INT, MPI_MIN, comm));
+  std::vector<double> buf(width * static_cast<size_t>(s.nt), 0.0);
+  for (int t = 0; t < s.nt; ++t) {
+    PetscCheck(from[t] != std::numeric_limits<int>::max(), comm, PETSC_ERR_PLIB,
+               "sheet %s: triangle %d was computed by no rank at the last step", s.name.c_str(), t);
+    if (from[t] != rank) continue;
+    double *b = &buf[width * static_cast<size_t>(t)];
+    record(s, t, [&](double &v) { *b++ = v; });
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE,
+                             MPI_SUM, comm));
+  for (int t = 0; t < s.nt; ++t) {
+    if (s.fresh[t]) continue;
+    const double *b = &buf[width * static_cast<size_t>(t)];
+    record(s, t, [&](double &v) { v = *b++; });
+  }
+  PetscFunctionReturn(0);
+}
+
 // An elastoplastic triangle's plastic state is history: a rank that computes a triangle it did
 // not compute at the last step (a point crossed into its cells) takes the state from a rank that
-// did (the lowest), before the step's update. Every triangle was computed by some rank (every
-// point has an owner), so the state taken is the last step's. Two allreduces over the triangles,
-// only at the steps where some rank's set changes.
+// did, before the step's update; the state taken is the last step's. Only at the steps where
+// some rank's set changes.
 PetscErrorCode RefreshPlasticState(Sheet &s, const std::vector<int> &tris, MPI_Comm comm) {
   PetscFunctionBeginUser;
   int stale = 0;
@@ -392,25 +445,8 @@ PetscErrorCode RefreshPlasticState(Sheet &s, const std::vector<int> &tris, MPI_C
   if (!stale) PetscFunctionReturn(0);
   PetscCall(PetscInfo(nullptr, "sheet %s: plastic state shared (a rank's triangles changed)\n",
                       s.name.c_str()));
-  PetscMPIInt rank;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  std::vector<int> from(s.nt);
-  for (int t = 0; t < s.nt; ++t) from[t] = s.fresh[t] ? rank : std::numeric_limits<int>::max();
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, from.data(), s.nt, MPI_INT, MPI_MIN, comm));
-  std::vector<double> state(4 * static_cast<size_t>(s.nt), 0.0);
-  for (int t = 0; t < s.nt; ++t) {
-    PetscCheck(from[t] != std::numeric_limits<int>::max(), comm, PETSC_ERR_PLIB,
-               "sheet %s: triangle %d was computed by no rank at the last step", s.name.c_str(), t);
-    if (from[t] != rank) continue;
-    for (int k = 0; k < 3; ++k) state[4 * static_cast<size_t>(t) + k] = s.bp[3 * t + k];
-    state[4 * static_cast<size_t>(t) + 3] = s.alpha[t];
-  }
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, state.data(), static_cast<int>(state.size()), MPI_DOUBLE,
-                             MPI_SUM, comm));
-  for (int t = 0; t < s.nt; ++t) {
-    for (int k = 0; k < 3; ++k) s.bp[3 * t + k] = state[4 * static_cast<size_t>(t) + k];
-    s.alpha[t] = state[4 * static_cast<size_t>(t) + 3];
-  }
+  PetscCall(TakeFromLowestFresh(s, comm, kPlasticRecord,
+                                [](Sheet &sh, int t, auto &&f) { PlasticRecord(sh, t, f); }));
   PetscFunctionReturn(0);
 }
 
@@ -562,27 +598,6 @@ PetscErrorCode Reductions(StepState &S) {
 }
 } // namespace
 
-namespace {
-// A triangle's arrays (sheet.hpp), packed for SheetsComplete: strains, principal strains and
-// tensions, the forces' tensor, P, the state, and an elastoplastic sheet's plastic state.
-constexpr int kRecord = 3 + 2 + 2 + 3 + 6 + 1 + 4;
-template <class F> void TriangleRecord(Sheet &s, int t, F &&f) {
-  const size_t T = static_cast<size_t>(t);
-  for (int k = 0; k < 3; ++k) f(s.biot[3 * T + k]);
-  for (int k = 0; k < 2; ++k) f(s.b[2 * T + k]);
-  for (int k = 0; k < 2; ++k) f(s.N[2 * T + k]);
-  for (int k = 0; k < 3; ++k) f(s.tens[3 * T + k]);
-  for (int k = 0; k < 6; ++k) f(s.P[6 * T + k]);
-  double state = static_cast<double>(s.state[t]);
-  f(state);
-  s.state[t] = static_cast<SheetState>(static_cast<int>(state));
-  double none = 0;
-  const bool plastic = s.law == SheetLaw::Elastoplastic;
-  for (int k = 0; k < 3; ++k) f(plastic ? s.bp[3 * T + k] : none);
-  f(plastic ? s.alpha[t] : none);
-}
-} // namespace
-
 PetscErrorCode SheetsComplete(Simulation &sim) {
   PetscFunctionBeginUser;
   if (sim.size == 1) PetscFunctionReturn(0);
@@ -603,23 +618,8 @@ PetscErrorCode SheetsComplete(Simulation &sim) {
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &stale, 1, MPI_INT, MPI_LOR, sim.comm));
     if (!stale) continue;
     // each triangle's arrays from the lowest rank that computed it at the last step
-    std::vector<int> from(s.nt);
-    for (int t = 0; t < s.nt; ++t)
-      from[t] = s.fresh[t] ? sim.rank : std::numeric_limits<int>::max();
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, from.data(), s.nt, MPI_INT, MPI_MIN, sim.comm));
-    std::vector<double> buf(kRecord * static_cast<size_t>(s.nt), 0.0);
-    for (int t = 0; t < s.nt; ++t) {
-      if (from[t] != sim.rank) continue;
-      double *b = &buf[kRecord * static_cast<size_t>(t)];
-      TriangleRecord(s, t, [&](double &v) { *b++ = v; });
-    }
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE,
-                               MPI_SUM, sim.comm));
-    for (int t = 0; t < s.nt; ++t) {
-      if (s.fresh[t]) continue;
-      const double *b = &buf[kRecord * static_cast<size_t>(t)];
-      TriangleRecord(s, t, [&](double &v) { v = *b++; });
-    }
+    PetscCall(TakeFromLowestFresh(s, sim.comm, kRecord,
+                                  [](Sheet &sh, int t, auto &&f) { TriangleRecord(sh, t, f); }));
     sheet_sum_forces(s);
     sheet_normals(s);
   }
